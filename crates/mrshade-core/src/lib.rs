@@ -1,0 +1,17 @@
+//! mrshade-core: the types every other mrshade crate speaks.
+//!
+//! No I/O and no GPU here: colour transfer functions, the HDR image type, the
+//! `Differential { rv, r }` pair of differential rendering, surface flags, projection and
+//! environment-map conventions, CPU BRDF math and the typed render settings with the spec's
+//! defaults.
+
+pub mod brdf;
+pub mod color;
+pub mod differential;
+pub mod flags;
+pub mod image;
+pub mod math;
+pub mod settings;
+
+pub use differential::Differential;
+pub use image::HdrImage;

@@ -1,0 +1,85 @@
+//! Projection and environment-map conventions. Matrices are named `a_from_b`: they map
+//! coordinates of space `b` into space `a`, so `clip_from_world = clip_from_view * view_from_world`.
+
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use std::f32::consts::{PI, TAU};
+
+/// Perspective projection with reversed depth (near → 1, infinity → 0) for wgpu's [0, 1]
+/// clip depth. Reversed-Z keeps float depth precise across the metre-scale scenes and
+/// 1 cm near planes of the contract; the far plane is at infinity so nothing is clipped.
+pub fn clip_from_view_perspective(yfov: f32, aspect: f32, znear: f32) -> Mat4 {
+    glam::camera::rh::proj::directx::perspective_infinite_reverse(yfov, aspect, znear)
+}
+
+/// Environment lookup of the data contract: `u = atan2(x, −z) / 2π` wrapped to [0, 1),
+/// `v = acos(y) / π`, row 0 at the top (+Y).
+pub fn equirect_uv_from_dir(d: Vec3) -> Vec2 {
+    let u = d.x.atan2(-d.z) / TAU;
+    let u = if u < 0.0 { u + 1.0 } else { u };
+    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+    Vec2::new(u, v)
+}
+
+/// Inverse of [`equirect_uv_from_dir`]: the unit direction at texture coordinate `uv`.
+pub fn dir_from_equirect_uv(uv: Vec2) -> Vec3 {
+    let phi = uv.x * TAU;
+    let theta = uv.y * PI;
+    Vec3::new(theta.sin() * phi.sin(), theta.cos(), -theta.sin() * phi.cos())
+}
+
+/// `[environment] rotation_deg` rotates the probe about +Y (right-handed): a world
+/// direction `d` sees the probe texel at `probe_from_world * d`.
+pub fn probe_from_world(rotation_deg: f32) -> Mat3 {
+    Mat3::from_rotation_y(-rotation_deg.to_radians())
+}
+
+/// Solid angle of texel row `y` of a `width × height` equirectangular map.
+pub fn equirect_texel_solid_angle(y: u32, width: u32, height: u32) -> f32 {
+    let theta0 = PI * y as f32 / height as f32;
+    let theta1 = PI * (y + 1) as f32 / height as f32;
+    (TAU / width as f32) * (theta0.cos() - theta1.cos())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contract_axes() {
+        // −Z is the centre column's left edge (u = 0), +Y the top row.
+        assert!(equirect_uv_from_dir(Vec3::NEG_Z).abs_diff_eq(Vec2::new(0.0, 0.5), 1e-6));
+        assert!(equirect_uv_from_dir(Vec3::X).abs_diff_eq(Vec2::new(0.25, 0.5), 1e-6));
+        assert!(equirect_uv_from_dir(Vec3::Z).abs_diff_eq(Vec2::new(0.5, 0.5), 1e-6));
+        assert!(equirect_uv_from_dir(Vec3::NEG_X).abs_diff_eq(Vec2::new(0.75, 0.5), 1e-6));
+        assert!((equirect_uv_from_dir(Vec3::Y).y).abs() < 1e-6);
+    }
+
+    #[test]
+    fn uv_round_trip() {
+        for &(u, v) in &[(0.1, 0.2), (0.6, 0.7), (0.9, 0.45)] {
+            let uv = Vec2::new(u, v);
+            assert!(equirect_uv_from_dir(dir_from_equirect_uv(uv)).abs_diff_eq(uv, 1e-5));
+        }
+    }
+
+    #[test]
+    fn rotating_the_probe_by_90_degrees_moves_its_content() {
+        // Content at −Z in the probe appears at −X after a +90° right-handed turn about +Y.
+        let d = probe_from_world(90.0) * Vec3::NEG_X;
+        assert!(d.abs_diff_eq(Vec3::NEG_Z, 1e-6));
+    }
+
+    #[test]
+    fn texel_solid_angles_sum_to_the_sphere() {
+        let total: f32 = (0..64).map(|y| 128.0 * equirect_texel_solid_angle(y, 128, 64)).sum();
+        assert!((total - 4.0 * PI).abs() < 1e-3);
+    }
+
+    #[test]
+    fn reversed_depth_maps_near_to_one() {
+        let clip_from_view = clip_from_view_perspective(1.0, 1.5, 0.1);
+        let near = clip_from_view.project_point3(Vec3::new(0.0, 0.0, -0.1));
+        let far = clip_from_view.project_point3(Vec3::new(0.0, 0.0, -1e6));
+        assert!((near.z - 1.0).abs() < 1e-6 && far.z < 1e-6);
+    }
+}

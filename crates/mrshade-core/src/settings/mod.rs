@@ -1,0 +1,96 @@
+//! Typed render settings with documented defaults.
+//!
+//! Sessions (`[composite]`, `[shadows]`, `method`) and the command line fill these; they are
+//! validated once (`validate`) and then passed by value to the passes. Every field documents
+//! its trade-off and, where the spec gives one, its source.
+
+mod composite;
+mod shadows;
+
+pub use composite::{CompositeMode, CompositeSettings};
+pub use shadows::ShadowSettings;
+
+use serde::{Deserialize, Serialize};
+
+/// The light-transport method that computes `L_rv` and `L_r`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Direct light only: punctual lights with real-only and virtual-only shadow maps
+    /// (Knecht Eq. 5.1–5.5) plus unshadowed image-based light from the probe.
+    #[default]
+    Direct,
+}
+
+impl Method {
+    /// Every method, for `--help` and error messages.
+    pub const ALL: &'static [Method] = &[Method::Direct];
+
+    /// The name used in sessions and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Direct => "direct",
+        }
+    }
+
+    /// Parses a method name.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        Self::ALL.iter().copied().find(|m| m.name() == name).ok_or_else(|| {
+            let known: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
+            format!("unknown method `{name}` (known: {})", known.join(", "))
+        })
+    }
+}
+
+/// Everything that selects how a frame is computed (not what is in it).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RenderSettings {
+    /// Light-transport method.
+    pub method: Method,
+    /// How `L_rv` and `L_r` are merged with the photo.
+    pub composite: CompositeSettings,
+    /// Shadow maps of punctual lights.
+    pub shadows: ShadowSettings,
+}
+
+impl RenderSettings {
+    /// Checks every value; the error names the offending field.
+    pub fn validate(&self) -> Result<(), String> {
+        self.composite.validate()?;
+        self.shadows.validate()
+    }
+}
+
+/// `Err` naming `field` unless `ok`.
+pub(crate) fn check(ok: bool, field: &str, what: impl std::fmt::Display) -> Result<(), String> {
+    if ok { Ok(()) } else { Err(format!("`{field}` {what}")) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_documented_values() {
+        let s = RenderSettings::default();
+        s.validate().unwrap();
+        assert_eq!(s.method, Method::Direct);
+        assert_eq!(s.composite.mode, CompositeMode::AlphaScaled);
+        assert_eq!(s.shadows.resolution, 2048);
+    }
+
+    #[test]
+    fn unknown_fields_are_rejected() {
+        let err = toml::from_str::<RenderSettings>("[shadows]\nresolutoin = 5\n").unwrap_err();
+        assert!(err.to_string().contains("resolutoin"), "{err}");
+    }
+
+    #[test]
+    fn method_names_round_trip() {
+        for m in Method::ALL {
+            assert_eq!(Method::from_name(m.name()).unwrap(), *m);
+        }
+        assert!(Method::from_name("magic").unwrap_err().contains("direct"));
+    }
+}

@@ -1,0 +1,142 @@
+//! Reading results back: the composite and the AOVs a user debugs with.
+
+use crate::renderer::Renderer;
+use anyhow::Result;
+use half::f16;
+use mrshade_core::flags::{SURFACE_COVERED, SURFACE_REAL};
+use mrshade_core::{Differential, HdrImage};
+use mrshade_gpu::{GpuContext, Target, readback};
+
+/// The composited frame.
+pub struct Composite {
+    /// Linear camera values (exposure applied), output size.
+    pub image: HdrImage,
+    /// Fraction of each pixel covered by virtual surfaces.
+    pub coverage: Vec<f32>,
+}
+
+/// An AOV image: linear (saved as EXR) or for display (saved as PNG).
+pub enum AovImage {
+    /// Linear values.
+    Linear(HdrImage),
+    /// 8-bit RGB for viewing.
+    Display {
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+        /// RGB bytes.
+        rgb: Vec<u8>,
+    },
+}
+
+/// A named AOV.
+pub struct Aov {
+    /// File stem.
+    pub name: &'static str,
+    /// The image.
+    pub image: AovImage,
+}
+
+impl Renderer {
+    /// Reads the composite back.
+    pub fn read_composite(&self, ctx: &GpuContext) -> Result<Composite> {
+        let texels = readback::read_rgba32f(ctx, &self.composite_targets.composite.texture)?;
+        let (width, height) = self.output_size();
+        Ok(Composite {
+            image: HdrImage { width, height, pixels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect() },
+            coverage: texels.iter().map(|t| t[3]).collect(),
+        })
+    }
+
+    /// Reads `L_rv` and `L_r` (radiance, before exposure) at the internal size.
+    pub fn read_radiance(&self, ctx: &GpuContext) -> Result<Differential<HdrImage>> {
+        Ok(Differential { rv: read_rgba16f(ctx, &self.radiance.rv)?, r: read_rgba16f(ctx, &self.radiance.r)? })
+    }
+
+    /// Reads the G-buffer flag words at the internal size.
+    pub fn read_flags(&self, ctx: &GpuContext) -> Result<Vec<u32>> {
+        readback::read_r32u(ctx, &self.gbuffer.flags.texture)
+    }
+
+    /// Every AOV: radiance pair, α, the difference, virtual mask, normals, flags.
+    pub fn read_aovs(&self, ctx: &GpuContext) -> Result<Vec<Aov>> {
+        let radiance = self.read_radiance(ctx)?;
+        let exposure = self.exposure();
+        let difference = HdrImage {
+            width: radiance.rv.width,
+            height: radiance.rv.height,
+            pixels: radiance
+                .rv
+                .pixels
+                .iter()
+                .zip(&radiance.r.pixels)
+                .map(|(a, b)| std::array::from_fn(|c| exposure * (a[c] - b[c])))
+                .collect(),
+        };
+        let composite = self.read_composite(ctx)?;
+        let (w, h) = self.output_size();
+        let (iw, ih) = self.internal_size();
+        let flags = self.read_flags(ctx)?;
+        let normals = read_rgba16f(ctx, &self.gbuffer.normal_roughness)?;
+        let display = |width, height, rgb| AovImage::Display { width, height, rgb };
+        Ok(vec![
+            Aov { name: "difference_signed", image: display(iw, ih, signed_colors(&difference)) },
+            Aov { name: "difference", image: AovImage::Linear(difference) },
+            Aov { name: "l_rv", image: AovImage::Linear(radiance.rv) },
+            Aov { name: "l_r", image: AovImage::Linear(radiance.r) },
+            Aov { name: "alpha", image: AovImage::Linear(read_rgba16f(ctx, &self.composite_targets.alpha)?) },
+            Aov {
+                name: "virtual_mask",
+                image: display(w, h, composite.coverage.iter().flat_map(|&c| [(c * 255.0 + 0.5) as u8; 3]).collect()),
+            },
+            Aov {
+                name: "normals",
+                image: display(
+                    iw,
+                    ih,
+                    normals
+                        .pixels
+                        .iter()
+                        .flat_map(|n| n.map(|v| ((v * 0.5 + 0.5).clamp(0.0, 1.0) * 255.0 + 0.5) as u8))
+                        .collect(),
+                ),
+            },
+            Aov { name: "flags", image: display(iw, ih, flags.iter().flat_map(|&f| flag_color(f)).collect()) },
+        ])
+    }
+}
+
+/// Background black, real surfaces grey-blue, virtual surfaces orange.
+fn flag_color(flags: u32) -> [u8; 3] {
+    if flags & SURFACE_COVERED == 0 {
+        [0, 0, 0]
+    } else if flags & SURFACE_REAL != 0 {
+        [90, 110, 160]
+    } else {
+        [240, 140, 40]
+    }
+}
+
+/// Added light in green, removed light (shadows) in red, on black; ±0.25 saturates.
+fn signed_colors(diff: &HdrImage) -> Vec<u8> {
+    diff.pixels
+        .iter()
+        .flat_map(|p| {
+            let v = (p[0] + p[1] + p[2]) / 3.0;
+            let m = ((v.abs() / 0.25).min(1.0) * 255.0 + 0.5) as u8;
+            if v >= 0.0 { [0, m, 0] } else { [m, 0, 0] }
+        })
+        .collect()
+}
+
+fn read_rgba16f(ctx: &GpuContext, target: &Target) -> Result<HdrImage> {
+    let bytes = readback::read_texture(ctx, &target.texture)?;
+    let halves: &[f16] = bytemuck::cast_slice(&bytes);
+    let (width, height) = target.size();
+    Ok(HdrImage {
+        width,
+        height,
+        pixels: halves.chunks_exact(4).map(|t| [t[0].to_f32(), t[1].to_f32(), t[2].to_f32()]).collect(),
+    })
+}

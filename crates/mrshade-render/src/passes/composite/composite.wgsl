@@ -1,0 +1,70 @@
+// Differential composite (TVCG Eq. 1–2; Knecht §2.1). In linear camera values:
+//   virtual pixels: exposure · L_rv
+//   real pixels:    photo + α · exposure · (L_rv − L_r),
+//                   α = (photo + ε) / (exposure · L_r + ε) per channel, clamped to [0, α_max]
+//                   (α = 1 in the additive mode of Debevec).
+// With supersampling, each output pixel averages its s×s shading samples: the real samples'
+// differences are averaged and added to the photo, then blended with the mean virtual
+// sample by virtual coverage. Where nothing virtual changes a pixel the photo passes through
+// bit-exactly (difference 0 and coverage 0).
+
+struct CompositeParams {
+    // 1 = α-scaled, 0 = additive; ε; α_max; unused
+    mode_epsilon_max: vec4f,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: CompositeParams;
+@group(0) @binding(2) var l_rv_texture: texture_2d<f32>;
+@group(0) @binding(3) var l_r_texture: texture_2d<f32>;
+@group(0) @binding(4) var flags_texture: texture_2d<u32>;
+@group(0) @binding(5) var photo_texture: texture_2d<f32>;
+// rgb: composite (linear camera value); a: virtual coverage
+@group(0) @binding(6) var out_composite: texture_storage_2d<rgba32float, write>;
+// rgb: mean α of the real samples
+@group(0) @binding(7) var out_alpha: texture_storage_2d<rgba16float, write>;
+
+fn alpha_of(photo: vec3f, exposed_l_r: vec3f) -> vec3f {
+    if (params.mode_epsilon_max.x == 0.0) { return vec3f(1.0); }
+    let eps = params.mode_epsilon_max.y;
+    return clamp((photo + eps) / (max(exposed_l_r, vec3f(0.0)) + eps), vec3f(0.0), vec3f(params.mode_epsilon_max.z));
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.zw)) { return; }
+    let pixel = vec2i(id.xy);
+    let photo = textureLoad(photo_texture, pixel, 0).rgb;
+    let exposure = frame.exposure_env.x;
+    let s = i32(frame.counts.z);
+    var real_delta = vec3f(0.0);
+    var alpha_sum = vec3f(0.0);
+    var real_count = 0.0;
+    var virtual_sum = vec3f(0.0);
+    var virtual_count = 0.0;
+    for (var sy = 0; sy < s; sy++) {
+        for (var sx = 0; sx < s; sx++) {
+            let q = pixel * s + vec2i(sx, sy);
+            let flags = textureLoad(flags_texture, q, 0).r;
+            let l_rv = textureLoad(l_rv_texture, q, 0).rgb;
+            if (is_covered(flags) && !is_real(flags)) {
+                virtual_sum += exposure * l_rv;
+                virtual_count += 1.0;
+            } else {
+                let l_r = textureLoad(l_r_texture, q, 0).rgb;
+                let a = alpha_of(photo, exposure * l_r);
+                real_delta += a * exposure * (l_rv - l_r);
+                alpha_sum += a;
+                real_count += 1.0;
+            }
+        }
+    }
+    let real_part = photo + real_delta / max(real_count, 1.0);
+    var value = real_part;
+    let coverage = virtual_count / f32(s * s);
+    if (virtual_count > 0.0) {
+        value = mix(real_part, virtual_sum / virtual_count, coverage);
+    }
+    textureStore(out_composite, pixel, vec4f(max(value, vec3f(0.0)), coverage));
+    textureStore(out_alpha, pixel, vec4f(alpha_sum / max(real_count, 1.0), 1.0));
+}

@@ -1,0 +1,107 @@
+// Direct differential shading (Knecht §2.7, Eq. 5.1–5.5): for every pixel and every
+// primary light, the unoccluded radiance L_o is written to both buffers at once:
+//   L_rv += L_o · min(V_r, V_v)          (5.1, 5.3)
+//   L_r  += L_o · r(pl) · r(p) · V_r     (5.2)
+// The probe is real light, unshadowed in this method: it adds to L_rv everywhere and to L_r
+// on real surfaces. Where no surface covers a pixel both buffers hold the probe itself.
+
+struct ShadowParams {
+    pcf_radius: i32,
+    normal_offset: f32,
+    _pad: vec2f,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> shadow_params: ShadowParams;
+@group(0) @binding(2) var gbuffer_depth: texture_depth_2d;
+@group(0) @binding(3) var gbuffer_albedo_metallic: texture_2d<f32>;
+@group(0) @binding(4) var gbuffer_normal_roughness: texture_2d<f32>;
+@group(0) @binding(5) var gbuffer_specular: texture_2d<f32>;
+@group(0) @binding(6) var gbuffer_emission_occlusion: texture_2d<f32>;
+@group(0) @binding(7) var gbuffer_flags: texture_2d<u32>;
+
+@group(1) @binding(0) var<storage, read> materials: array<Material>;
+@group(1) @binding(1) var<storage, read> lights: array<Light>;
+@group(1) @binding(2) var<storage, read> shadow_clip_from_world: array<mat4x4f>;
+@group(1) @binding(3) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(4) var shadow_sampler: sampler_comparison;
+
+@group(2) @binding(0) var env_radiance: texture_2d<f32>;
+@group(2) @binding(1) var env_irradiance: texture_2d<f32>;
+@group(2) @binding(2) var env_dfg_table: texture_2d<f32>;
+@group(2) @binding(3) var env_sampler: sampler;
+
+@group(3) @binding(0) var out_l_rv: texture_storage_2d<rgba16float, write>;
+@group(3) @binding(1) var out_l_r: texture_storage_2d<rgba16float, write>;
+
+fn load_surface(pixel: vec2i, p: vec3f) -> Surface {
+    let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
+    let nr = textureLoad(gbuffer_normal_roughness, pixel, 0);
+    let sp = textureLoad(gbuffer_specular, pixel, 0);
+    let eo = textureLoad(gbuffer_emission_occlusion, pixel, 0);
+    var s: Surface;
+    s.position = p;
+    s.normal = normalize(nr.xyz);
+    s.view = normalize(frame.camera_position.xyz - p);
+    s.base_color = am.rgb;
+    s.metallic = am.a;
+    s.roughness = nr.a;
+    s.dielectric_f0 = sp.rgb;
+    s.dielectric_f90 = sp.a;
+    s.emission = eo.rgb;
+    s.occlusion = eo.a;
+    s.transmission = 0.0;
+    return s;
+}
+
+// Light through a transmissive surface (KHR_materials_transmission + _volume), seen along
+// the refracted view ray in the probe and attenuated by Beer–Lambert over the thickness.
+// Screen-space refraction of the photo is a later method; here glass refracts the probe.
+fn refracted_probe(s: Surface, m: Material) -> vec3f {
+    let t = m.transmission.x * (1.0 - s.metallic);
+    if (t <= 0.0) { return vec3f(0.0); }
+    let ior = max(m.transmission.y, 1.0);
+    let dir = refract(-s.view, s.normal, 1.0 / ior);
+    let absorption = select(vec3f(0.0), -log(max(m.attenuation_cutoff.rgb, vec3f(1e-4))) / m.transmission.w, m.transmission.w < 1e29);
+    let transmittance = exp(-absorption * m.transmission.z);
+    let f = schlick(surface_f0(s), surface_f90(s), max(dot(s.normal, s.view), 0.0));
+    return t * (vec3f(1.0) - f) * s.base_color * transmittance * env_radiance_at(frame, dir, s.roughness);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.xy)) { return; }
+    let pixel = vec2i(id.xy);
+    let centre = vec2f(id.xy) + 0.5;
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    if (!is_covered(flags)) {
+        let dir = normalize(world_from_pixel(frame, centre, 0.5) - frame.camera_position.xyz);
+        let probe = env_radiance_at(frame, dir, 0.0);
+        textureStore(out_l_rv, pixel, vec4f(probe, 1.0));
+        textureStore(out_l_r, pixel, vec4f(probe, 1.0));
+        return;
+    }
+    let p = world_from_pixel(frame, centre, textureLoad(gbuffer_depth, pixel, 0));
+    let m = materials[material_of(flags)];
+    var s = load_surface(pixel, p);
+    s.transmission = m.transmission.x;
+    let r_p = r_of(flags);
+
+    var l_rv = vec3f(0.0);
+    var l_r = vec3f(0.0);
+    for (var i = 0u; i < frame.counts.x; i++) {
+        let light = lights[i];
+        let incident = light_incident(light, p);
+        let l_o = brdf_cos(s, incident.l) * incident.radiance;
+        if (all(l_o == vec3f(0.0))) { continue; }
+        let v_r = shadow_visibility(light, light.info.y, p, s.normal, shadow_params.pcf_radius, shadow_params.normal_offset);
+        let v_v = shadow_visibility(light, light.info.w, p, s.normal, shadow_params.pcf_radius, shadow_params.normal_offset);
+        l_rv += l_o * min(v_r, v_v);
+        l_r += l_o * light.direction_real.w * r_p * v_r;
+    }
+    let ambient = env_shading(frame, s, refracted_probe(s, m)) + s.emission;
+    l_rv += ambient;
+    l_r += ambient * r_p;
+    textureStore(out_l_rv, pixel, vec4f(l_rv, 1.0));
+    textureStore(out_l_r, pixel, vec4f(l_r, 1.0));
+}

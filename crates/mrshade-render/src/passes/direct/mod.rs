@@ -1,0 +1,205 @@
+//! Direct-light differential shading (Knecht §2.7, Eq. 5.1–5.5), the `direct` method:
+//! punctual lights with real-only/virtual-only shadow maps, unshadowed image-based light from
+//! the probe, emission. Writes `L_rv` and `L_r` from the same evaluation in one dispatch.
+//! Inputs: G-buffer, lights, shadow maps, probe. Outputs: `Differential { rv, r }`.
+
+use crate::passes::gbuffer::GBuffer;
+use crate::passes::shadow::ShadowPass;
+use crate::scene_gpu::GpuScene;
+use bytemuck::{Pod, Zeroable};
+use mrshade_core::Differential;
+use mrshade_core::settings::ShadowSettings;
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{GpuContext, Target, bind, wgsl};
+use wgpu::util::DeviceExt;
+
+/// Mirrors `ShadowParams` in direct.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct ShadowParams {
+    pcf_radius: i32,
+    normal_offset: f32,
+    _pad: [f32; 2],
+}
+
+/// Format of the radiance buffers `L_rv`, `L_r` (linear HDR).
+pub const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// Allocates the pair of radiance buffers at `size`.
+pub fn radiance_targets(device: &wgpu::Device, size: (u32, u32)) -> Differential<Target> {
+    let usage =
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
+    Differential {
+        rv: Target::new_2d(device, "radiance/l_rv", size, RADIANCE_FORMAT, usage),
+        r: Target::new_2d(device, "radiance/l_r", size, RADIANCE_FORMAT, usage),
+    }
+}
+
+/// The direct shading pass with its bind groups.
+pub struct DirectPass {
+    pipeline: wgpu::ComputePipeline,
+    groups: [wgpu::BindGroup; 4],
+    size: (u32, u32),
+}
+
+impl DirectPass {
+    /// GPU timing label.
+    pub const LABEL: &'static str = "direct";
+
+    /// Binds the G-buffer, scene, shadow maps and probe, writing into `radiance`.
+    pub fn new(
+        ctx: &GpuContext,
+        frame: &wgpu::Buffer,
+        settings: &ShadowSettings,
+        gbuffer: &GBuffer,
+        scene: &GpuScene,
+        shadows: &ShadowPass,
+        radiance: &Differential<Target>,
+    ) -> Self {
+        let device = &ctx.device;
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let d2 = wgpu::TextureViewDimension::D2;
+        let params = ShadowParams {
+            pcf_radius: settings.pcf_radius as i32,
+            normal_offset: settings.normal_offset,
+            _pad: [0.0; 2],
+        };
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("direct/shadow_params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+
+        let gbuffer_layout = bind::layout(
+            device,
+            "direct/gbuffer_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::uniform(1, cs),
+                bind::texture(2, cs, wgpu::TextureSampleType::Depth, d2),
+                bind::texture(3, cs, unfilterable, d2),
+                bind::texture(4, cs, unfilterable, d2),
+                bind::texture(5, cs, unfilterable, d2),
+                bind::texture(6, cs, unfilterable, d2),
+                bind::texture(7, cs, wgpu::TextureSampleType::Uint, d2),
+            ],
+        );
+        let lights_layout = bind::layout(
+            device,
+            "direct/lights_layout",
+            &[
+                bind::storage(0, cs),
+                bind::storage(1, cs),
+                bind::storage(2, cs),
+                bind::texture(3, cs, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
+                bind::sampler(4, cs, wgpu::SamplerBindingType::Comparison),
+            ],
+        );
+        let probe_layout = bind::layout(
+            device,
+            "direct/probe_layout",
+            &[
+                bind::texture_float(0, cs),
+                bind::texture_float(1, cs),
+                bind::texture_float(2, cs),
+                bind::sampler(3, cs, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
+        let output_layout = bind::layout(
+            device,
+            "direct/output_layout",
+            &[bind::storage_texture(0, RADIANCE_FORMAT), bind::storage_texture(1, RADIANCE_FORMAT)],
+        );
+        use wgpu::BindingResource::{Sampler, TextureView};
+        let probe = &scene.probe;
+        let groups = [
+            bind::group(
+                device,
+                "direct/gbuffer_group",
+                &gbuffer_layout,
+                &[
+                    frame.as_entire_binding(),
+                    params.as_entire_binding(),
+                    TextureView(&gbuffer.depth.view),
+                    TextureView(&gbuffer.albedo_metallic.view),
+                    TextureView(&gbuffer.normal_roughness.view),
+                    TextureView(&gbuffer.specular.view),
+                    TextureView(&gbuffer.emission_occlusion.view),
+                    TextureView(&gbuffer.flags.view),
+                ],
+            ),
+            bind::group(
+                device,
+                "direct/lights_group",
+                &lights_layout,
+                &[
+                    scene.materials.buffer.as_entire_binding(),
+                    scene.lights.as_entire_binding(),
+                    scene.shadow_matrices.as_entire_binding(),
+                    TextureView(&shadows.maps.view),
+                    Sampler(&shadows.sampler),
+                ],
+            ),
+            bind::group(
+                device,
+                "direct/probe_group",
+                &probe_layout,
+                &[
+                    TextureView(&probe.radiance.view),
+                    TextureView(&probe.irradiance.view),
+                    TextureView(&probe.dfg.view),
+                    Sampler(&probe.sampler),
+                ],
+            ),
+            bind::group(
+                device,
+                "direct/output_group",
+                &output_layout,
+                &[TextureView(&radiance.rv.view), TextureView(&radiance.r.view)],
+            ),
+        ];
+        let module = mrshade_gpu::shader::create_module(device, "direct/shader", SHADER);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("direct/pipeline_layout"),
+            bind_group_layouts: &[
+                Some(&gbuffer_layout),
+                Some(&lights_layout),
+                Some(&probe_layout),
+                Some(&output_layout),
+            ],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("direct/pipeline"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("cs_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Self { pipeline, groups, size: radiance.rv.size() }
+    }
+
+    /// Shades every pixel.
+    pub fn record(&self, rec: &mut Recorder) {
+        rec.compute(Self::LABEL, |pass| {
+            pass.set_pipeline(&self.pipeline);
+            for (i, g) in self.groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
+            }
+            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
+        });
+    }
+}
+
+/// The composed WGSL module (shared library + this pass).
+pub const SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/shadow.wgsl",
+    "direct.wgsl",
+);

@@ -1,0 +1,6 @@
+//! The passes of a frame, one folder each with its shaders. `crate::frame` calls them in order.
+
+pub mod composite;
+pub mod direct;
+pub mod gbuffer;
+pub mod shadow;

@@ -1,0 +1,107 @@
+//! The renderer of one session: GPU scene, passes and targets, created once.
+
+use crate::passes::composite::{CompositePass, CompositeTargets};
+use crate::passes::direct::{DirectPass, radiance_targets};
+use crate::passes::gbuffer::{GBuffer, GBufferPass};
+use crate::passes::shadow::ShadowPass;
+use crate::scene_gpu::GpuScene;
+use crate::uniforms::FrameUniforms;
+use anyhow::Result;
+use mrshade_core::Differential;
+use mrshade_core::settings::RenderSettings;
+use mrshade_gpu::{GpuContext, Target};
+use mrshade_scene::Session;
+use wgpu::util::DeviceExt;
+
+/// Everything needed to render frames of one session.
+pub struct Renderer {
+    pub(crate) uniforms: FrameUniforms,
+    pub(crate) settings: RenderSettings,
+    pub(crate) scene: GpuScene,
+    pub(crate) shadows: ShadowPass,
+    pub(crate) gbuffer: GBuffer,
+    pub(crate) gbuffer_pass: GBufferPass,
+    pub(crate) radiance: Differential<Target>,
+    pub(crate) direct: DirectPass,
+    pub(crate) composite_targets: CompositeTargets,
+    pub(crate) composite: CompositePass,
+}
+
+impl Renderer {
+    /// Uploads `session` and builds every pass. GPU errors become `Err`.
+    pub fn new(ctx: &GpuContext, session: &Session) -> Result<Self> {
+        ctx.checked("creating the renderer", || Ok(Self::build(ctx, session)))
+    }
+
+    fn build(ctx: &GpuContext, session: &Session) -> Self {
+        let device = &ctx.device;
+        let scene = GpuScene::new(device, &ctx.queue, session);
+        let uniforms = FrameUniforms::new(session, scene.light_count, scene.probe.radiance_mips);
+        let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("frame/uniforms"),
+            contents: bytemuck::bytes_of(&uniforms),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let photo = upload_photo(ctx, session);
+        let settings = session.settings.clone();
+        let internal = uniforms.internal_size();
+
+        let shadows = ShadowPass::new(ctx, &scene.geometry, scene.shadow_layers.clone(), &settings.shadows);
+        let gbuffer = GBuffer::new(device, internal);
+        let gbuffer_pass = GBufferPass::new(ctx, &frame, &scene.geometry, &scene.materials);
+        let radiance = radiance_targets(device, internal);
+        let direct = DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, &radiance);
+        let composite_targets = CompositeTargets::new(device, uniforms.output_size());
+        let composite =
+            CompositePass::new(ctx, &frame, &settings.composite, &radiance, &gbuffer.flags, &photo, &composite_targets);
+        Self {
+            uniforms,
+            settings,
+            scene,
+            shadows,
+            gbuffer,
+            gbuffer_pass,
+            radiance,
+            direct,
+            composite_targets,
+            composite,
+        }
+    }
+
+    /// Output size (width, height).
+    pub fn output_size(&self) -> (u32, u32) {
+        self.uniforms.output_size()
+    }
+
+    /// Internal shading size (output × supersampling).
+    pub fn internal_size(&self) -> (u32, u32) {
+        self.uniforms.internal_size()
+    }
+
+    /// The session's exposure.
+    pub fn exposure(&self) -> f32 {
+        self.uniforms.exposure_env.x
+    }
+}
+
+/// The photo as linear `Rgba32Float` (exact: decoded on the CPU from the 8-bit table).
+fn upload_photo(ctx: &GpuContext, session: &Session) -> Target {
+    let bg = &session.background;
+    let target = Target::new_2d(
+        &ctx.device,
+        "composite/photo",
+        (bg.width, bg.height),
+        wgpu::TextureFormat::Rgba32Float,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    let texels: Vec<f32> = bg.pixels.iter().flat_map(|p| [p[0], p[1], p[2], 1.0]).collect();
+    mrshade_gpu::texture::write_level(
+        &ctx.queue,
+        &target.texture,
+        0,
+        (bg.width, bg.height),
+        16,
+        bytemuck::cast_slice(&texels),
+    );
+    target
+}

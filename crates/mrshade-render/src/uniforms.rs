@@ -1,0 +1,61 @@
+//! Per-frame constants (`Frame` in shaders/lib/frame.wgsl), built from the session's camera.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, UVec4, Vec4};
+use mrshade_core::math::{clip_from_view_perspective, probe_from_world};
+use mrshade_scene::Session;
+
+/// Mirrors `struct Frame` in `shaders/lib/frame.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct FrameUniforms {
+    /// World → clip of the render camera (reversed depth).
+    pub clip_from_world: Mat4,
+    /// Its inverse.
+    pub world_from_clip: Mat4,
+    /// Probe rotation (upper 3×3).
+    pub probe_from_world: Mat4,
+    /// Camera position (xyz).
+    pub camera_position: Vec4,
+    /// Internal width, height; output width, height.
+    pub size: UVec4,
+    /// Light count, probe present, supersampling factor, radiance mip count.
+    pub counts: UVec4,
+    /// Exposure, probe intensity.
+    pub exposure_env: Vec4,
+}
+
+impl FrameUniforms {
+    /// Constants for rendering `session` with `light_count` lights and `radiance_mips` probe levels.
+    pub fn new(session: &Session, light_count: u32, radiance_mips: u32) -> Self {
+        let camera = &session.scene.cameras[session.camera];
+        let out = session.output;
+        let (w, h) = (out.width * out.supersample, out.height * out.supersample);
+        let view_from_world = camera.world_from_camera.inverse();
+        let clip_from_view = clip_from_view_perspective(camera.yfov, w as f32 / h as f32, camera.znear);
+        let clip_from_world = clip_from_view * view_from_world;
+        let (rotation, intensity, has_env) = match &session.environment {
+            Some(env) => (env.rotation_deg, env.intensity, 1),
+            None => (0.0, 0.0, 0),
+        };
+        Self {
+            clip_from_world,
+            world_from_clip: clip_from_world.inverse(),
+            probe_from_world: Mat4::from_mat3(probe_from_world(rotation)),
+            camera_position: camera.world_from_camera.w_axis,
+            size: UVec4::new(w, h, out.width, out.height),
+            counts: UVec4::new(light_count, has_env, out.supersample, radiance_mips),
+            exposure_env: Vec4::new(session.exposure, intensity, 0.0, 0.0),
+        }
+    }
+
+    /// Internal (shading) resolution.
+    pub fn internal_size(&self) -> (u32, u32) {
+        (self.size.x, self.size.y)
+    }
+
+    /// Output resolution.
+    pub fn output_size(&self) -> (u32, u32) {
+        (self.size.z, self.size.w)
+    }
+}

@@ -1,0 +1,194 @@
+//! Tiny synthetic sessions rendered on the test GPU (lavapipe in CI).
+#![allow(dead_code)]
+
+use glam::{Vec3, Vec4};
+use mrshade_core::{Differential, HdrImage};
+use mrshade_gpu::GpuContext;
+use mrshade_render::Renderer;
+use mrshade_render::uniforms::FrameUniforms;
+use mrshade_scene::{Session, SessionOverrides};
+use mrshade_testkit::gltf::{GltfBuilder, quad, quat, write_exr, write_png};
+use serde_json::json;
+
+/// A scene under construction with its photo and probe.
+pub struct Setup {
+    pub gltf: GltfBuilder,
+    pub size: (u32, u32),
+    pub photo: Box<dyn Fn(u32, u32) -> [u8; 3]>,
+    pub probe: Option<[f32; 3]>,
+    pub extra_toml: String,
+}
+
+impl Setup {
+    /// A camera 1 m above the origin looking straight down (yfov 1 rad), square image.
+    pub fn top_down(size: u32) -> Self {
+        let mut gltf = GltfBuilder::new();
+        gltf.camera_node("camera", 1.0, None, [0.0, 1.0, 0.0], quat([1.0, 0.0, 0.0], -std::f32::consts::FRAC_PI_2));
+        // Small shadow maps keep lavapipe fast; 512 texels resolve these scenes' shadows.
+        let extra_toml = "[shadows]\nresolution = 512\n".to_string();
+        Self { gltf, size: (size, size), photo: Box::new(|_, _| [128, 128, 128]), probe: None, extra_toml }
+    }
+
+    /// Adds a Lambertian quad of half size `half` at height `y`.
+    pub fn plane(&mut self, half: f32, y: f32, albedo: f32, real: bool) -> &mut Self {
+        let m = self.gltf.material(mrshade_testkit::gltf::lambert("plane", [albedo; 3]));
+        let mesh = self.gltf.mesh(&quad(half), Some(m), true);
+        self.gltf.node(json!({"name": "plane", "mesh": mesh, "translation": [0.0, y, 0.0], "extras": {"real": real}}));
+        self
+    }
+
+    /// Adds a Lambertian box.
+    pub fn cube(&mut self, center: [f32; 3], half: f32, real: bool) -> &mut Self {
+        let m = self.gltf.material(mrshade_testkit::gltf::lambert("cube", [0.7; 3]));
+        let mesh = self.gltf.mesh(&mrshade_testkit::gltf::cuboid([half; 3]), Some(m), true);
+        self.gltf.node(json!({"name": "cube", "mesh": mesh, "translation": center, "extras": {"real": real}}));
+        self
+    }
+
+    /// Adds a light pointing straight down from `position`.
+    pub fn light(&mut self, light: serde_json::Value, position: [f32; 3], real: bool) -> &mut Self {
+        let l = self.gltf.light(light);
+        let down = quat([1.0, 0.0, 0.0], -std::f32::consts::FRAC_PI_2);
+        self.gltf.node(json!({"name": "light", "translation": position, "rotation": down,
+            "extensions": {"KHR_lights_punctual": {"light": l}}, "extras": {"real": real}}));
+        self
+    }
+
+    /// Writes everything and loads the session.
+    pub fn session(&self) -> (tempfile::TempDir, Session) {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        self.gltf.write_gltf(d, "scene");
+        write_png(&d.join("photo.png"), self.size.0, self.size.1, &self.photo);
+        let mut toml = "scene = \"scene.gltf\"\nbackground = \"photo.png\"\nexposure = 1.0\n".to_string();
+        if let Some(c) = self.probe {
+            write_exr(&d.join("probe.exr"), 64, 32, |_, _| c);
+            toml += "[environment]\nimage = \"probe.exr\"\n";
+        }
+        toml += &self.extra_toml;
+        std::fs::write(d.join("session.toml"), toml).unwrap();
+        let session = Session::load(&d.join("session.toml"), &SessionOverrides::default()).unwrap();
+        (dir, session)
+    }
+
+    /// Renders one frame.
+    pub fn render(&self) -> Rendered {
+        let (_dir, session) = self.session();
+        Rendered::new(session)
+    }
+}
+
+/// A rendered frame with everything needed to inspect it.
+pub struct Rendered {
+    pub ctx: GpuContext,
+    pub session: Session,
+    pub renderer: Renderer,
+    pub radiance: Differential<HdrImage>,
+}
+
+impl Rendered {
+    pub fn new(session: Session) -> Self {
+        let ctx = mrshade_testkit::gpu();
+        let renderer = Renderer::new(&ctx, &session).unwrap();
+        renderer.render_once(&ctx).unwrap();
+        let radiance = renderer.read_radiance(&ctx).unwrap();
+        Self { ctx, session, renderer, radiance }
+    }
+
+    /// Where the centre of internal pixel (x, y) hits the plane y = `height`.
+    pub fn world_on_plane(&self, x: u32, y: u32, height: f32) -> Vec3 {
+        let u = FrameUniforms::new(&self.session, 0, 1);
+        let (w, h) = u.internal_size();
+        let ndc = |depth: f32| {
+            let p = u.world_from_clip
+                * Vec4::new(
+                    (x as f32 + 0.5) / w as f32 * 2.0 - 1.0,
+                    1.0 - (y as f32 + 0.5) / h as f32 * 2.0,
+                    depth,
+                    1.0,
+                );
+            p.truncate() / p.w
+        };
+        let (a, b) = (ndc(1.0), ndc(0.5));
+        let t = (height - a.y) / (b.y - a.y);
+        a + (b - a) * t
+    }
+
+    pub fn l_rv(&self, x: u32, y: u32) -> Vec3 {
+        Vec3::from(self.radiance.rv.get(x, y))
+    }
+
+    pub fn l_r(&self, x: u32, y: u32) -> Vec3 {
+        Vec3::from(self.radiance.r.get(x, y))
+    }
+}
+
+/// Lambertian radiance of a surface with normal +Y at `p` lit by a point/spot light.
+pub fn lambert_point(albedo: f32, intensity: f32, light: Vec3, p: Vec3, spot_factor: f32) -> f32 {
+    let to = light - p;
+    let d2 = to.length_squared();
+    let cos = (to / d2.sqrt()).y.max(0.0);
+    albedo / std::f32::consts::PI * intensity * spot_factor * cos / d2
+}
+
+/// Relative difference.
+pub fn rel(a: f32, b: f32) -> f32 {
+    (a - b).abs() / b.abs().max(1e-6)
+}
+
+/// Whether the segment from `a` to `b` passes through the axis-aligned box (centre, half size).
+pub fn segment_hits_box(a: Vec3, b: Vec3, center: Vec3, half: f32) -> bool {
+    let (lo, hi) = (center - Vec3::splat(half), center + Vec3::splat(half));
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f32, 1.0f32);
+    for i in 0..3 {
+        if d[i].abs() < 1e-9 {
+            if a[i] < lo[i] || a[i] > hi[i] {
+                return false;
+            }
+        } else {
+            let (mut ta, mut tb) = ((lo[i] - a[i]) / d[i], (hi[i] - a[i]) / d[i]);
+            if ta > tb {
+                std::mem::swap(&mut ta, &mut tb);
+            }
+            t0 = t0.max(ta);
+            t1 = t1.min(tb);
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// A box in a test scene.
+#[derive(Clone, Copy)]
+pub struct Blocker {
+    pub center: Vec3,
+    pub half: f32,
+}
+
+/// How a plane pixel relates to a light and some blockers, with a safety margin around
+/// shadow edges (PCF softens them).
+#[derive(Debug, PartialEq)]
+pub enum ShadowClass {
+    /// The camera does not see the plane here, or the pixel is near a shadow edge.
+    Unknown,
+    /// Clearly in the shadow of the blockers.
+    Shadowed,
+    /// Clearly lit.
+    Lit,
+}
+
+pub fn classify(camera: Vec3, p: Vec3, light: Vec3, blockers: &[Blocker], margin: f32) -> ShadowClass {
+    if blockers.iter().any(|b| segment_hits_box(camera, p, b.center, b.half + margin)) {
+        return ShadowClass::Unknown;
+    }
+    if blockers.iter().any(|b| segment_hits_box(p, light, b.center, b.half - margin)) {
+        ShadowClass::Shadowed
+    } else if !blockers.iter().any(|b| segment_hits_box(p, light, b.center, b.half + margin)) {
+        ShadowClass::Lit
+    } else {
+        ShadowClass::Unknown
+    }
+}

@@ -1,0 +1,121 @@
+//! Tier 1 (no GPU): every composed shader validates with naga, and every struct shared by
+//! Rust and WGSL has the same size and member offsets on both sides.
+
+use mrshade_render::passes::{composite, direct, gbuffer, shadow};
+use mrshade_render::scene_gpu::{GpuInstance, GpuLight, GpuMaterial};
+use mrshade_render::uniforms::FrameUniforms;
+use std::mem::{offset_of, size_of};
+
+const MODULES: &[(&str, &str)] = &[
+    ("shadow", shadow::SHADER),
+    ("gbuffer", gbuffer::SHADER),
+    ("direct", direct::SHADER),
+    ("composite", composite::SHADER),
+];
+
+fn parse(name: &str, source: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)))
+}
+
+#[test]
+fn every_shader_validates() {
+    for (name, source) in MODULES {
+        let module = parse(name, source);
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+    }
+}
+
+/// Size and `(member, offset)` of WGSL struct `name` in `source`.
+fn wgsl_layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
+    let module = parse(name, source);
+    for (_, ty) in module.types.iter() {
+        if ty.name.as_deref() == Some(name)
+            && let naga::TypeInner::Struct { members, span } = &ty.inner
+        {
+            return (*span, members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset)).collect());
+        }
+    }
+    panic!("struct {name} not found");
+}
+
+fn assert_layout(source: &str, name: &str, size: usize, offsets: &[(&str, usize)]) {
+    let (span, members) = wgsl_layout(source, name);
+    assert_eq!(span as usize, size, "size of {name}");
+    let rust: Vec<(String, u32)> = offsets.iter().map(|(n, o)| (n.to_string(), *o as u32)).collect();
+    assert_eq!(members, rust, "members of {name}");
+}
+
+#[test]
+fn frame_uniforms_match() {
+    assert_layout(
+        direct::SHADER,
+        "Frame",
+        size_of::<FrameUniforms>(),
+        &[
+            ("clip_from_world", offset_of!(FrameUniforms, clip_from_world)),
+            ("world_from_clip", offset_of!(FrameUniforms, world_from_clip)),
+            ("probe_from_world", offset_of!(FrameUniforms, probe_from_world)),
+            ("camera_position", offset_of!(FrameUniforms, camera_position)),
+            ("size", offset_of!(FrameUniforms, size)),
+            ("counts", offset_of!(FrameUniforms, counts)),
+            ("exposure_env", offset_of!(FrameUniforms, exposure_env)),
+        ],
+    );
+}
+
+#[test]
+fn lights_materials_instances_match() {
+    assert_layout(
+        direct::SHADER,
+        "Light",
+        size_of::<GpuLight>(),
+        &[
+            ("position", offset_of!(GpuLight, position)),
+            ("direction_real", offset_of!(GpuLight, direction_real)),
+            ("intensity", offset_of!(GpuLight, intensity)),
+            ("cone", offset_of!(GpuLight, cone)),
+            ("info", offset_of!(GpuLight, info)),
+        ],
+    );
+    assert_layout(
+        gbuffer::SHADER,
+        "Material",
+        size_of::<GpuMaterial>(),
+        &[
+            ("base_color", offset_of!(GpuMaterial, base_color)),
+            ("params", offset_of!(GpuMaterial, params)),
+            ("dielectric", offset_of!(GpuMaterial, dielectric)),
+            ("transmission", offset_of!(GpuMaterial, transmission)),
+            ("attenuation_cutoff", offset_of!(GpuMaterial, attenuation_cutoff)),
+            ("emissive", offset_of!(GpuMaterial, emissive)),
+            ("texture_flags", offset_of!(GpuMaterial, texture_flags)),
+        ],
+    );
+    for source in [gbuffer::SHADER, shadow::SHADER] {
+        assert_layout(
+            source,
+            "Instance",
+            size_of::<GpuInstance>(),
+            &[
+                ("world_from_object", offset_of!(GpuInstance, world_from_object)),
+                ("normal_from_object", offset_of!(GpuInstance, normal_from_object)),
+                ("info", offset_of!(GpuInstance, info)),
+            ],
+        );
+    }
+}
+
+#[test]
+fn flag_constants_match_the_core_crate() {
+    use mrshade_core::flags::{SURFACE_COVERED, SURFACE_MATERIAL_SHIFT, SURFACE_REAL};
+    let source = gbuffer::SHADER;
+    for (name, value) in [
+        ("SURFACE_COVERED", SURFACE_COVERED),
+        ("SURFACE_REAL", SURFACE_REAL),
+        ("SURFACE_MATERIAL_SHIFT", SURFACE_MATERIAL_SHIFT),
+    ] {
+        assert!(source.contains(&format!("const {name}: u32 = {value}u;")), "{name} differs");
+    }
+}

@@ -1,0 +1,148 @@
+//! The scene model: flattened, world-placed geometry with materials, lights and cameras,
+//! each marked real or virtual. Built by `crate::gltf`, consumed by the renderers.
+
+mod material;
+
+pub use material::{AlphaMode, Material, Texture, TextureRef};
+
+use glam::{Mat4, Vec2, Vec3};
+use mrshade_core::flags::Realness;
+
+/// A triangle list in object space with one material.
+#[derive(Clone, Debug, Default)]
+pub struct Primitive {
+    /// `mesh name / primitive index`, for messages.
+    pub name: String,
+    /// Vertex positions (metres, object space).
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position.
+    pub normals: Vec<Vec3>,
+    /// `TEXCOORD_0`, one per position (zero where the mesh has none).
+    pub uvs: Vec<Vec2>,
+    /// Three indices per triangle, each `< positions.len()`.
+    pub indices: Vec<u32>,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+}
+
+/// A primitive placed in the world by a node.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// The glTF node's name (or `node N`).
+    pub node_name: String,
+    /// Index into [`Scene::primitives`].
+    pub primitive: usize,
+    /// Object → world transform accumulated down the node hierarchy.
+    pub world_from_object: Mat4,
+    /// Real proxy or inserted virtual object.
+    pub realness: Realness,
+}
+
+/// The kind of a `KHR_lights_punctual` light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    /// Omnidirectional point light.
+    Point,
+    /// Cone light; angles in radians from the axis, `0 ≤ inner < outer ≤ π/2`.
+    Spot {
+        /// Full intensity inside this angle.
+        inner_cone: f32,
+        /// Zero intensity outside this angle.
+        outer_cone: f32,
+    },
+    /// Parallel light along the node's −Z.
+    Directional,
+}
+
+/// A punctual light. Intensity is radiometric (contract): radiant intensity
+/// `intensity × color` per steradian for point and spot lights, irradiance for directional.
+#[derive(Clone, Debug)]
+pub struct Light {
+    /// The light's or node's name.
+    pub name: String,
+    /// Point, spot or directional.
+    pub kind: LightKind,
+    /// `intensity × color`, linear RGB.
+    pub intensity: Vec3,
+    /// Light → world; the light sits at the origin and shines down its −Z.
+    pub world_from_light: Mat4,
+    /// A real lamp (already in the photo) or an inserted virtual one.
+    pub realness: Realness,
+}
+
+impl Light {
+    /// World-space position.
+    pub fn position(&self) -> Vec3 {
+        self.world_from_light.transform_point3(Vec3::ZERO)
+    }
+
+    /// World-space unit direction the light shines along.
+    pub fn direction(&self) -> Vec3 {
+        self.world_from_light.transform_vector3(Vec3::NEG_Z).normalize_or(Vec3::NEG_Z)
+    }
+}
+
+/// A perspective camera placed by a node.
+#[derive(Clone, Debug)]
+pub struct Camera {
+    /// The node's name.
+    pub node_name: String,
+    /// The glTF camera's own name, if any.
+    pub camera_name: Option<String>,
+    /// Vertical field of view in radians.
+    pub yfov: f32,
+    /// Width / height, if the file fixes it.
+    pub aspect_ratio: Option<f32>,
+    /// Near plane distance (metres).
+    pub znear: f32,
+    /// Camera → world, rigid (scale removed); the camera looks down its −Z.
+    pub world_from_camera: Mat4,
+}
+
+impl Camera {
+    /// Whether `name` names this camera (node name or camera name).
+    pub fn is_named(&self, name: &str) -> bool {
+        self.node_name == name || self.camera_name.as_deref() == Some(name)
+    }
+}
+
+/// Everything loaded from one glTF file.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// All triangle lists.
+    pub primitives: Vec<Primitive>,
+    /// All materials (at least one: the default material is appended when needed).
+    pub materials: Vec<Material>,
+    /// Decoded textures referenced by materials.
+    pub textures: Vec<Texture>,
+    /// Primitives placed in the world.
+    pub instances: Vec<Instance>,
+    /// Punctual lights.
+    pub lights: Vec<Light>,
+    /// Perspective cameras, in scene traversal order.
+    pub cameras: Vec<Camera>,
+    /// What the loader could not honour and skipped (unsupported extensions, …).
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// World-space bounding box of all instances, or `None` for an empty scene.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        for inst in &self.instances {
+            for &p in &self.primitives[inst.primitive].positions {
+                let w = inst.world_from_object.transform_point3(p);
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+        }
+        (lo.x <= hi.x).then_some((lo, hi))
+    }
+
+    /// Whether anything virtual is in the scene (objects or lights).
+    pub fn has_virtual_content(&self) -> bool {
+        self.instances.iter().any(|i| i.realness == Realness::Virtual)
+            || self.lights.iter().any(|l| l.realness == Realness::Virtual)
+    }
+}

@@ -1,0 +1,128 @@
+//! Command-line arguments.
+
+use clap::{Args, Parser, Subcommand};
+use mrshade_core::settings::Method;
+use std::path::PathBuf;
+
+/// Real-time mixed-reality rendering with reciprocal shading: inserts the virtual objects of a
+/// glTF scene into a photo of the real one, with their shadows and light on the real
+/// surfaces, by differential rendering.
+#[derive(Parser, Debug)]
+#[command(name = "mrshade", version, propagate_version = true)]
+pub struct Cli {
+    /// The command to run.
+    #[command(subcommand)]
+    pub command: Command,
+    /// Use the GPU adapter whose name contains this text (see `mrshade adapters`).
+    #[arg(long, global = true, value_name = "NAME")]
+    pub adapter: Option<String>,
+    /// Print nothing but errors.
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+}
+
+/// Subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a session (TOML) to an image (.png: sRGB; .exr: linear; .jpg: sRGB).
+    Render(RenderArgs),
+    /// Render the built-in demo session (a desk lamp lights a real desk; a virtual torus and
+    /// cube cast its shadows), with no other input.
+    Demo(DemoArgs),
+    /// Measure GPU time per pass and per frame with timestamp queries.
+    Bench(BenchArgs),
+    /// List the GPU adapters this machine offers.
+    Adapters,
+    /// Print what a session holds: objects, lights, flags, warnings.
+    Info(InfoArgs),
+}
+
+/// How to load a session and what to change in it.
+#[derive(Args, Debug, Clone)]
+pub struct SessionArgs {
+    /// The session file (TOML): scene, background, exposure, [environment], …
+    #[arg(value_name = "SESSION")]
+    pub session: PathBuf,
+    /// Output width in pixels (default: the photo's; the height follows its aspect ratio).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Output height in pixels.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Light-transport method.
+    #[arg(long, value_parser = method_names())]
+    pub method: Option<String>,
+    /// Compositing: `alpha` (α-scaled differential, default) or `additive` (Debevec).
+    #[arg(long, value_parser = ["alpha", "additive"])]
+    pub composite: Option<String>,
+    /// Shading samples per pixel along each axis (1–4): anti-aliases the virtual edges.
+    #[arg(long, value_name = "N")]
+    pub supersample: Option<u32>,
+    /// Override any session setting, e.g. `--set shadows.resolution=4096` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Set by commands that may change the aspect ratio (bench); not a flag.
+    #[arg(skip)]
+    pub stretch_photo: bool,
+}
+
+fn method_names() -> Vec<&'static str> {
+    Method::ALL.iter().map(|m| m.name()).collect()
+}
+
+/// `mrshade render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// The session and its overrides.
+    #[command(flatten)]
+    pub session: SessionArgs,
+    /// Output image: .png (sRGB), .exr (linear camera values) or .jpg.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Also write the AOVs here: l_rv.exr, l_r.exr, alpha.exr, difference.exr and
+    /// difference_signed.png, virtual_mask.png, normals.png, flags.png, side_by_side.png.
+    #[arg(long, value_name = "DIR")]
+    pub aov_dir: Option<PathBuf>,
+}
+
+/// `mrshade demo`.
+#[derive(Args, Debug)]
+pub struct DemoArgs {
+    /// Output image.
+    #[arg(short, long, value_name = "OUT", default_value = "demo.png")]
+    pub output: PathBuf,
+    /// Also write the AOVs here (see `render --help`).
+    #[arg(long, value_name = "DIR")]
+    pub aov_dir: Option<PathBuf>,
+    /// Output width (default 640).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Output height (default 480).
+    #[arg(long)]
+    pub height: Option<u32>,
+}
+
+/// `mrshade bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// The session and its overrides.
+    #[command(flatten)]
+    pub session: SessionArgs,
+    /// Frames measured.
+    #[arg(long, default_value_t = 300)]
+    pub frames: u32,
+    /// Frames rendered first and not measured (pipelines compile, caches fill).
+    #[arg(long, default_value_t = 30)]
+    pub warmup: u32,
+    /// Write the results as JSON here.
+    #[arg(long, value_name = "OUT.json")]
+    pub json: Option<PathBuf>,
+}
+
+/// `mrshade info`.
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    /// The session and its overrides.
+    #[command(flatten)]
+    pub session: SessionArgs,
+}

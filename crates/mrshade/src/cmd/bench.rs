@@ -1,0 +1,145 @@
+//! `mrshade bench`: GPU milliseconds per pass and per frame from timestamp queries.
+
+use super::{Log, load_session, open_gpu};
+use crate::args::BenchArgs;
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use mrshade_gpu::GpuOptions;
+use mrshade_gpu::timing::{flatten, profiler};
+use mrshade_render::Renderer;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+#[derive(Serialize)]
+struct Stats {
+    mean_ms: f64,
+    p95_ms: f64,
+    min_ms: f64,
+    max_ms: f64,
+}
+
+impl Stats {
+    fn of(samples: &[f64]) -> Self {
+        let mut s = samples.to_vec();
+        s.sort_by(f64::total_cmp);
+        let pick = |q: f64| s[((s.len() as f64 - 1.0) * q).round() as usize];
+        Stats {
+            mean_ms: s.iter().sum::<f64>() / s.len() as f64,
+            p95_ms: pick(0.95),
+            min_ms: s[0],
+            max_ms: s[s.len() - 1],
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Report {
+    session: String,
+    method: String,
+    adapter: String,
+    backend: String,
+    device_type: String,
+    driver: String,
+    width: u32,
+    height: u32,
+    supersample: u32,
+    frames: u32,
+    warmup: u32,
+    /// From the first pass's start to the last pass's end, on the GPU's clock.
+    frame: Stats,
+    /// Per pass label (several passes with one label, e.g. shadow layers, are summed per frame).
+    passes: BTreeMap<String, Stats>,
+    /// Pass labels in frame order.
+    pass_order: Vec<String>,
+}
+
+/// Runs the benchmark.
+pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    // Speed is measured at the requested size whatever the photo's aspect ratio.
+    let mut session_args = args.session.clone();
+    session_args.stretch_photo = true;
+    let session = load_session(&session_args, log)?;
+    let ctx = open_gpu(gpu, log)?;
+    if !ctx.timestamps {
+        bail!("adapter {} does not support timestamp queries, which bench needs", ctx.info.name);
+    }
+    let renderer = Renderer::new(&ctx, &session)?;
+    let mut profiler = profiler(&ctx, true)?;
+    let (w, h) = renderer.output_size();
+    log.info(format!("bench {w}×{h}, {} warm-up + {} measured frames", args.warmup, args.frames));
+
+    let total = (args.warmup + args.frames) as u64;
+    let bar = if log.shows_progress() { ProgressBar::new(total) } else { ProgressBar::hidden() };
+    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}").context("progress style")?);
+    let mut frames: Vec<Vec<(String, f64, f64)>> = Vec::new();
+    for i in 0..total {
+        renderer.render(&ctx, &mut profiler)?;
+        profiler.end_frame().map_err(|e| anyhow::anyhow!("profiler: {e}"))?;
+        ctx.wait_idle()?;
+        while let Some(results) = profiler.process_finished_frame(ctx.queue.get_timestamp_period()) {
+            if i >= args.warmup as u64 {
+                frames.push(flatten(&results));
+            }
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    if frames.is_empty() {
+        bail!("no timestamp results came back from the GPU");
+    }
+
+    let mut pass_order: Vec<String> = Vec::new();
+    let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let mut frame_ms = Vec::new();
+    for f in &frames {
+        let start = f.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let end = f.iter().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
+        frame_ms.push((end - start) * 1e3);
+        let mut sums: BTreeMap<&str, f64> = BTreeMap::new();
+        for (label, s, e) in f {
+            if !pass_order.contains(label) {
+                pass_order.push(label.clone());
+            }
+            *sums.entry(label).or_default() += (e - s) * 1e3;
+        }
+        for (label, ms) in sums {
+            per_pass.entry(label.to_string()).or_default().push(ms);
+        }
+    }
+    let report = Report {
+        session: session.origin.clone(),
+        method: session.settings.method.name().into(),
+        adapter: ctx.info.name.clone(),
+        backend: format!("{:?}", ctx.info.backend),
+        device_type: format!("{:?}", ctx.info.device_type),
+        driver: format!("{} {}", ctx.info.driver, ctx.info.driver_info),
+        width: w,
+        height: h,
+        supersample: session.output.supersample,
+        frames: frames.len() as u32,
+        warmup: args.warmup,
+        frame: Stats::of(&frame_ms),
+        passes: per_pass.iter().map(|(k, v)| (k.clone(), Stats::of(v))).collect(),
+        pass_order,
+    };
+    print_report(&report);
+    if let Some(path) = &args.json {
+        std::fs::write(path, serde_json::to_string_pretty(&report)?)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        log.info(format!("wrote {}", path.display()));
+    }
+    Ok(())
+}
+
+fn print_report(r: &Report) {
+    println!("{} on {} ({}), {}×{}, {} frames", r.method, r.adapter, r.backend, r.width, r.height, r.frames);
+    println!("{:<12} {:>10} {:>10}", "pass", "mean ms", "p95 ms");
+    for label in &r.pass_order {
+        let s = &r.passes[label];
+        println!("{label:<12} {:>10.3} {:>10.3}", s.mean_ms, s.p95_ms);
+    }
+    println!("{:<12} {:>10.3} {:>10.3}", "frame", r.frame.mean_ms, r.frame.p95_ms);
+}

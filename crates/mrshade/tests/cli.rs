@@ -1,0 +1,177 @@
+//! The command line: help everywhere, one-line errors with a non-zero exit, and the commands
+//! doing their work on the test GPU.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn mrshade(args: &[&str]) -> Output {
+    let runtime = tempfile::tempdir().unwrap();
+    Command::new(env!("CARGO_BIN_EXE_mrshade"))
+        .args(args)
+        // Mesa's WSI complains on stderr when this is unset; keep stderr to our own lines.
+        .env("XDG_RUNTIME_DIR", runtime.path())
+        .output()
+        .expect("run mrshade")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The command failed with exactly one line on stderr, which names `needle`.
+fn assert_one_line_error(o: &Output, needle: &str) {
+    assert!(!o.status.success(), "expected failure");
+    let err = stderr(o);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "one line on stderr, got: {err}");
+    assert!(lines[0].starts_with("error: ") && lines[0].contains(needle), "{err}");
+}
+
+fn demo_session() -> String {
+    concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo/session.toml").to_string()
+}
+
+#[test]
+fn help_everywhere() {
+    for args in [
+        &["--help"][..],
+        &["render", "--help"],
+        &["demo", "--help"],
+        &["bench", "--help"],
+        &["info", "--help"],
+        &["adapters", "--help"],
+    ] {
+        let o = mrshade(args);
+        assert!(o.status.success(), "{args:?}");
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(out.contains("Usage: mrshade"), "{args:?}: {out}");
+    }
+    let out = String::from_utf8_lossy(&mrshade(&["render", "--help"]).stdout).into_owned();
+    for flag in ["--width", "--height", "--aov-dir", "--method", "--composite", "--set", "--supersample"] {
+        assert!(out.contains(flag), "render --help lists {flag}");
+    }
+}
+
+#[test]
+fn failures_are_one_line_and_non_zero() {
+    assert_one_line_error(
+        &mrshade(&["render", "-q", "/nonexistent/session.toml", "-o", "/tmp/x.png"]),
+        "/nonexistent/session.toml",
+    );
+    assert_one_line_error(&mrshade(&["render", "-q", &demo_session(), "-o", "/tmp/x.bmp"]), "unknown image extension");
+    assert_one_line_error(
+        &mrshade(&["render", "-q", &demo_session(), "-o", "/tmp/x.png", "--set", "shadows.resolutoin=1"]),
+        "resolutoin",
+    );
+    assert_one_line_error(
+        &mrshade(&["render", "-q", &demo_session(), "-o", "/tmp/x.png", "--width", "100", "--height", "100"]),
+        "aspect",
+    );
+    assert_one_line_error(&mrshade(&["bench", "-q", &demo_session(), "--frames", "0"]), "--frames");
+    // clap rejects unknown values itself, also with a non-zero exit.
+    assert!(!mrshade(&["render", &demo_session(), "-o", "x.png", "--method", "magic"]).status.success());
+}
+
+#[test]
+fn render_writes_png_exr_and_aovs() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("out.png");
+    let exr = dir.path().join("out.exr");
+    let aovs = dir.path().join("aovs");
+    let o = mrshade(&[
+        "render",
+        &demo_session(),
+        "--width",
+        "64",
+        "-o",
+        png.to_str().unwrap(),
+        "--aov-dir",
+        aovs.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("adapter:"), "progress names the adapter");
+    let img = image::open(&png).unwrap();
+    assert_eq!((img.width(), img.height()), (64, 48));
+    for f in [
+        "l_rv.exr",
+        "l_r.exr",
+        "alpha.exr",
+        "difference.exr",
+        "difference_signed.png",
+        "virtual_mask.png",
+        "normals.png",
+        "flags.png",
+        "side_by_side.png",
+    ] {
+        assert!(aovs.join(f).is_file(), "AOV {f}");
+    }
+    let o = mrshade(&[
+        "render",
+        "-q",
+        &demo_session(),
+        "--width",
+        "64",
+        "--composite",
+        "additive",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let linear = image::open(&exr).unwrap().to_rgb32f();
+    assert!(linear.pixels().any(|p| p.0[0] > 0.0));
+}
+
+#[test]
+fn demo_needs_no_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_mrshade"))
+        .args(["demo", "--width", "80"])
+        .current_dir(dir.path())
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(Path::new(&dir.path().join("demo.png")).is_file());
+}
+
+#[test]
+fn bench_reports_per_pass_gpu_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("bench.json");
+    let o = mrshade(&[
+        "bench",
+        "-q",
+        &demo_session(),
+        "--frames",
+        "3",
+        "--warmup",
+        "1",
+        "--width",
+        "64",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(report["frames"], 3);
+    assert!(!report["adapter"].as_str().unwrap().is_empty());
+    for pass in ["shadows", "gbuffer", "direct", "composite"] {
+        assert!(report["passes"][pass]["mean_ms"].as_f64().unwrap() > 0.0, "{pass}");
+    }
+    assert!(report["frame"]["p95_ms"].as_f64().unwrap() >= report["frame"]["mean_ms"].as_f64().unwrap() * 0.5);
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.contains("frame") && table.contains("direct"), "{table}");
+}
+
+#[test]
+fn info_lists_objects_and_flags() {
+    let o = mrshade(&["info", "-q", &demo_session()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("virtual  torus")
+            && out.contains("real     desk")
+            && out.contains("light      real     desk-lamp"),
+        "{out}"
+    );
+}
