@@ -29,8 +29,8 @@ pub fn decode_photo(bytes: &[u8]) -> Result<HdrImage> {
 /// Decodes an equirectangular light probe (EXR or Radiance HDR, linear radiance).
 ///
 /// NaN and infinities are errors. Small negative values are common in real probes (ringing
-/// of the resampling filter that made them); they are clamped to 0 and reported in the
-/// returned warning.
+/// of the resampling filter that made them); they are clamped to 0, with a warning when they
+/// held more than 0.1 % of the probe's energy.
 pub fn decode_probe(bytes: &[u8]) -> Result<(HdrImage, Option<String>)> {
     let format = guess(bytes)?;
     if !matches!(format, ImageFormat::OpenExr | ImageFormat::Hdr) {
@@ -43,12 +43,21 @@ pub fn decode_probe(bytes: &[u8]) -> Result<(HdrImage, Option<String>)> {
         bail!("an equirectangular probe is twice as wide as high; this one is {}×{}", out.width, out.height);
     }
     check_finite(&out)?;
-    let negative = out.pixels.iter().filter(|p| p.iter().any(|&v| v < 0.0)).count();
+    let (negative_pixels, negative_sum, positive_sum) =
+        out.pixels.iter().flatten().fold((0, 0.0f64, 0.0f64), |(n, neg, pos), &v| {
+            if v < 0.0 { (n + 1, neg - v as f64, pos) } else { (n, neg, pos + v as f64) }
+        });
     for p in &mut out.pixels {
         *p = p.map(|v| v.max(0.0));
     }
-    let warning = (negative > 0)
-        .then(|| format!("{negative} probe pixel(s) held negative values (filter ringing); clamped to 0"));
+    // Tiny negative lobes are normal in resampled probes; say so only when clamping them
+    // changes the probe's energy noticeably (more than 0.1 %).
+    let warning = (negative_sum > 1e-3 * positive_sum).then(|| {
+        format!(
+            "{negative_pixels} probe value(s) were negative ({:.2} % of the probe's energy); clamped to 0",
+            100.0 * negative_sum / positive_sum.max(1e-30)
+        )
+    });
     Ok((out, warning))
 }
 
