@@ -17,3 +17,28 @@ pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
         source: wgpu::ShaderSource::Wgsl(source.into()),
     })
 }
+
+/// A compute pipeline running `cs_main` of `source` with the given bind group layouts
+/// (labels `<label>/shader`, `<label>/pipeline_layout`, `<label>/pipeline`).
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    layouts: &[&wgpu::BindGroupLayout],
+) -> wgpu::ComputePipeline {
+    let module = create_module(device, &format!("{label}/shader"), source);
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(|l| Some(*l)).collect();
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&format!("{label}/pipeline_layout")),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(&format!("{label}/pipeline")),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some("cs_main"),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}

@@ -91,20 +91,7 @@ impl CompositePass {
                 TextureView(&targets.alpha.view),
             ],
         );
-        let module = mrshade_gpu::shader::create_module(device, "composite/shader", SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("composite/pipeline_layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("composite/pipeline"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("cs_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = mrshade_gpu::shader::compute_pipeline(device, "composite", SHADER, &[&layout]);
         Self { pipeline, group, size: targets.composite.size() }
     }
 

@@ -159,25 +159,12 @@ impl DirectPass {
                 &[TextureView(&radiance.rv.view), TextureView(&radiance.r.view)],
             ),
         ];
-        let module = mrshade_gpu::shader::create_module(device, "direct/shader", SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("direct/pipeline_layout"),
-            bind_group_layouts: &[
-                Some(&gbuffer_layout),
-                Some(&lights_layout),
-                Some(&probe_layout),
-                Some(&output_layout),
-            ],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("direct/pipeline"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("cs_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = mrshade_gpu::shader::compute_pipeline(
+            device,
+            "direct",
+            SHADER,
+            &[&gbuffer_layout, &lights_layout, &probe_layout, &output_layout],
+        );
         Self { pipeline, groups, size: radiance.rv.size() }
     }
 

@@ -2,13 +2,6 @@
 // shading passes need per pixel; the real/virtual flag and material index go into `flags`
 // (the thesis encodes the flag in the depth sign; a separate word keeps depth hardware-tested).
 
-struct Instance {
-    world_from_object: mat4x4f,
-    normal_from_object: mat4x4f,
-    // material, surface flag bits, unused, unused
-    info: vec4u,
-}
-
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
 @group(0) @binding(2) var<storage, read> materials: array<Material>;

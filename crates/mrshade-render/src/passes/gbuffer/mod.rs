@@ -157,4 +157,9 @@ impl GBufferPass {
 }
 
 /// The composed WGSL module.
-pub const SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/gbuffer.wgsl", "gbuffer.wgsl");
+pub const SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "gbuffer.wgsl",
+);

@@ -132,4 +132,4 @@ impl ShadowPass {
 }
 
 /// The WGSL module.
-pub const SHADER: &str = wgsl!("shadow.wgsl");
+pub const SHADER: &str = wgsl!("../../../shaders/lib/instance.wgsl", "shadow.wgsl");

@@ -1,12 +1,6 @@
 // Shadow maps: depth of real-only or virtual-only casters seen from a light (one layer per
 // pass). Knecht §2.7: separate real and virtual maps avoid double shadowing.
 
-struct Instance {
-    world_from_object: mat4x4f,
-    normal_from_object: mat4x4f,
-    info: vec4u,
-}
-
 @group(0) @binding(0) var<uniform> layer_clip_from_world: mat4x4f;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
 
