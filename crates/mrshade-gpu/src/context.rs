@@ -8,6 +8,12 @@ pub const NO_ADAPTER_HELP: &str = "no GPU adapter found: mrshade needs a Vulkan 
 On a machine without a GPU install Mesa's software driver lavapipe \
 (Debian/Ubuntu: `apt-get install mesa-vulkan-drivers`); on a GPU machine install its Vulkan driver";
 
+/// Features mrshade cannot run without: 64-bit integers and 64-bit atomic max/min in storage
+/// buffers, for the compute rasteriser (Vulkan `shaderBufferInt64Atomics`; lavapipe and
+/// current desktop GPUs have them).
+pub const REQUIRED_FEATURES: wgpu::Features =
+    wgpu::Features::SHADER_INT64.union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
+
 /// How to pick the adapter.
 #[derive(Clone, Debug, Default)]
 pub struct GpuOptions {
@@ -61,12 +67,23 @@ impl GpuContext {
                 bail!("no adapter's name contains '{wanted}' (see `mrshade adapters`)");
             }
         }
+        let (capable, lacking): (Vec<_>, Vec<_>) =
+            adapters.into_iter().partition(|a| a.features().contains(REQUIRED_FEATURES));
+        if capable.is_empty() {
+            let names: Vec<String> = lacking.iter().map(|a| a.get_info().name).collect();
+            bail!(
+                "no adapter supports 64-bit storage-buffer atomics (Vulkan shaderBufferInt64Atomics), which mrshade \
+                 needs; adapters found: {}. Mesa's lavapipe (`apt-get install mesa-vulkan-drivers`) has them",
+                names.join(", ")
+            );
+        }
+        let mut adapters = capable;
         adapters.sort_by_key(|a| preference(a.get_info().device_type));
         let adapter = adapters.swap_remove(0);
         let info = adapter.get_info();
 
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        let mut required_features = wgpu::Features::empty();
+        let mut required_features = REQUIRED_FEATURES;
         if timestamps {
             required_features |= wgpu::Features::TIMESTAMP_QUERY;
         }

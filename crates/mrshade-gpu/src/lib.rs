@@ -8,6 +8,6 @@ pub mod shader;
 pub mod texture;
 pub mod timing;
 
-pub use context::{GpuContext, GpuOptions, NO_ADAPTER_HELP};
+pub use context::{GpuContext, GpuOptions, NO_ADAPTER_HELP, REQUIRED_FEATURES};
 pub use texture::Target;
 pub use wgpu;

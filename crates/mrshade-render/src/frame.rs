@@ -12,9 +12,9 @@ impl Renderer {
     /// Records one frame.
     pub fn record_frame(&self, rec: &mut Recorder) {
         // 1. Shadow maps: real-only and virtual-only casters per light.
-        self.shadows.record(rec, &self.scene.geometry);
-        // 2. G-buffer of real and virtual surfaces.
-        self.gbuffer_pass.record(rec, &self.scene.geometry, &self.scene.materials, &self.gbuffer);
+        self.shadows.record(rec, &self.rasterizer);
+        // 2. G-buffer of real and virtual surfaces: visibility, then attributes.
+        self.gbuffer_pass.record(rec, &self.rasterizer);
         // 3. Light transport into L_rv and L_r from the same evaluation.
         match self.settings.method {
             Method::Direct => self.direct.record(rec),
@@ -24,7 +24,8 @@ impl Renderer {
     }
 
     /// Records and submits one frame; timings (if enabled) go to `profiler`.
-    pub fn render(&self, ctx: &GpuContext, profiler: &mut GpuProfiler) -> Result<()> {
+    pub fn render(&mut self, ctx: &GpuContext, profiler: &mut GpuProfiler) -> Result<()> {
+        self.scene.geometry.begin_frame(&ctx.queue);
         ctx.checked("rendering a frame", || {
             let mut rec = Recorder::new(ctx, profiler, "frame");
             self.record_frame(&mut rec);
@@ -34,7 +35,7 @@ impl Renderer {
     }
 
     /// Renders one untimed frame and waits for it.
-    pub fn render_once(&self, ctx: &GpuContext) -> Result<()> {
+    pub fn render_once(&mut self, ctx: &GpuContext) -> Result<()> {
         let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
         self.render(ctx, &mut profiler)?;
         profiler.end_frame().map_err(|e| anyhow::anyhow!("profiler: {e}"))?;

@@ -8,6 +8,7 @@
 pub mod ibl;
 pub mod outputs;
 pub mod passes;
+pub mod raster;
 pub mod scene_gpu;
 pub mod uniforms;
 

@@ -4,6 +4,7 @@ use crate::passes::composite::{CompositePass, CompositeTargets};
 use crate::passes::direct::{DirectPass, radiance_targets};
 use crate::passes::gbuffer::{GBuffer, GBufferPass};
 use crate::passes::shadow::ShadowPass;
+use crate::raster::Rasterizer;
 use crate::scene_gpu::GpuScene;
 use crate::uniforms::FrameUniforms;
 use anyhow::Result;
@@ -18,6 +19,7 @@ pub struct Renderer {
     pub(crate) uniforms: FrameUniforms,
     pub(crate) settings: RenderSettings,
     pub(crate) scene: GpuScene,
+    pub(crate) rasterizer: Rasterizer,
     pub(crate) shadows: ShadowPass,
     pub(crate) gbuffer: GBuffer,
     pub(crate) gbuffer_pass: GBufferPass,
@@ -46,9 +48,11 @@ impl Renderer {
         let settings = session.settings.clone();
         let internal = uniforms.internal_size();
 
-        let shadows = ShadowPass::new(ctx, &scene.geometry, scene.shadow_layers.clone(), &settings.shadows);
+        let rasterizer = Rasterizer::new(ctx, &scene.geometry);
+        let shadows = ShadowPass::new(ctx, &rasterizer, &scene.geometry, &scene.shadow_layers, &settings.shadows);
         let gbuffer = GBuffer::new(device, internal);
-        let gbuffer_pass = GBufferPass::new(ctx, &frame, &scene.geometry, &scene.materials);
+        let gbuffer_pass =
+            GBufferPass::new(ctx, &frame, &uniforms, &rasterizer, &scene.geometry, &scene.materials, &gbuffer);
         let radiance = radiance_targets(device, internal);
         let direct = DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, &radiance);
         let composite_targets = CompositeTargets::new(device, uniforms.output_size());
@@ -58,6 +62,7 @@ impl Renderer {
             uniforms,
             settings,
             scene,
+            rasterizer,
             shadows,
             gbuffer,
             gbuffer_pass,

@@ -13,6 +13,8 @@ pub struct FrameUniforms {
     pub clip_from_world: Mat4,
     /// Its inverse.
     pub world_from_clip: Mat4,
+    /// `clip_from_world` of the previous frame (for reprojection).
+    pub previous_clip_from_world: Mat4,
     /// Probe rotation (upper 3×3).
     pub probe_from_world: Mat4,
     /// Camera position (xyz).
@@ -21,7 +23,7 @@ pub struct FrameUniforms {
     pub size: UVec4,
     /// Light count, probe present, supersampling factor, radiance mip count.
     pub counts: UVec4,
-    /// Exposure, probe intensity.
+    /// Exposure, probe intensity, camera near plane, frame index.
     pub exposure_env: Vec4,
 }
 
@@ -41,11 +43,12 @@ impl FrameUniforms {
         Self {
             clip_from_world,
             world_from_clip: clip_from_world.inverse(),
+            previous_clip_from_world: clip_from_world,
             probe_from_world: Mat4::from_mat3(probe_from_world(rotation)),
             camera_position: camera.world_from_camera.w_axis,
             size: UVec4::new(w, h, out.width, out.height),
             counts: UVec4::new(light_count, has_env, out.supersample, radiance_mips),
-            exposure_env: Vec4::new(session.exposure, intensity, 0.0, 0.0),
+            exposure_env: Vec4::new(session.exposure, intensity, camera.znear, 0.0),
         }
     }
 

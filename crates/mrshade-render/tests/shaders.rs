@@ -1,13 +1,14 @@
 //! Tier 1 (no GPU): every composed shader validates with naga, and every struct shared by
 //! Rust and WGSL has the same size and member offsets on both sides.
 
-use mrshade_render::passes::{composite, direct, gbuffer, shadow};
+use mrshade_render::passes::{composite, direct, gbuffer};
+use mrshade_render::raster;
 use mrshade_render::scene_gpu::{GpuInstance, GpuLight, GpuMaterial};
 use mrshade_render::uniforms::FrameUniforms;
 use std::mem::{offset_of, size_of};
 
 const MODULES: &[(&str, &str)] = &[
-    ("shadow", shadow::SHADER),
+    ("raster", raster::SHADER),
     ("gbuffer", gbuffer::SHADER),
     ("direct", direct::SHADER),
     ("composite", composite::SHADER),
@@ -56,6 +57,7 @@ fn frame_uniforms_match() {
         &[
             ("clip_from_world", offset_of!(FrameUniforms, clip_from_world)),
             ("world_from_clip", offset_of!(FrameUniforms, world_from_clip)),
+            ("previous_clip_from_world", offset_of!(FrameUniforms, previous_clip_from_world)),
             ("probe_from_world", offset_of!(FrameUniforms, probe_from_world)),
             ("camera_position", offset_of!(FrameUniforms, camera_position)),
             ("size", offset_of!(FrameUniforms, size)),
@@ -90,10 +92,11 @@ fn lights_materials_instances_match() {
             ("transmission", offset_of!(GpuMaterial, transmission)),
             ("attenuation_cutoff", offset_of!(GpuMaterial, attenuation_cutoff)),
             ("emissive", offset_of!(GpuMaterial, emissive)),
-            ("texture_flags", offset_of!(GpuMaterial, texture_flags)),
+            ("texture_layers", offset_of!(GpuMaterial, texture_layers)),
+            ("texture_info", offset_of!(GpuMaterial, texture_info)),
         ],
     );
-    for source in [gbuffer::SHADER, shadow::SHADER] {
+    for source in [gbuffer::SHADER, raster::SHADER] {
         assert_layout(
             source,
             "Instance",
@@ -101,6 +104,7 @@ fn lights_materials_instances_match() {
             &[
                 ("world_from_object", offset_of!(GpuInstance, world_from_object)),
                 ("normal_from_object", offset_of!(GpuInstance, normal_from_object)),
+                ("previous_world_from_object", offset_of!(GpuInstance, previous_world_from_object)),
                 ("info", offset_of!(GpuInstance, info)),
             ],
         );

@@ -18,15 +18,14 @@ pub struct ShadowSettings {
     /// Receiver offset along the surface normal, in shadow-map texels at the receiver's
     /// distance. Removes acne on surfaces at grazing angles to the light. Default 1.5.
     pub normal_offset: f32,
-    /// Constant depth bias of the rasterised caster depth, in depth-buffer units. Default 2.
-    pub depth_bias: i32,
-    /// Slope-scaled depth bias of the caster. Default 2.
-    pub slope_bias: f32,
+    /// Depth bias as a fraction of the receiver's distance to the light (perspective maps) or
+    /// of the map's depth range (directional maps). Default 0.002: 2 mm at 1 m.
+    pub depth_bias: f32,
 }
 
 impl Default for ShadowSettings {
     fn default() -> Self {
-        Self { resolution: 2048, pcf_radius: 1, normal_offset: 1.5, depth_bias: 2, slope_bias: 2.0 }
+        Self { resolution: 2048, pcf_radius: 1, normal_offset: 1.5, depth_bias: 0.002 }
     }
 }
 
@@ -49,9 +48,9 @@ impl ShadowSettings {
             format!("must be a number ≥ 0, got {}", self.normal_offset),
         )?;
         check(
-            self.slope_bias.is_finite() && self.slope_bias >= 0.0,
-            "shadows.slope_bias",
-            format!("must be a number ≥ 0, got {}", self.slope_bias),
+            self.depth_bias.is_finite() && (0.0..0.5).contains(&self.depth_bias),
+            "shadows.depth_bias",
+            format!("must be a number in [0, 0.5), got {}", self.depth_bias),
         )
     }
 }

@@ -6,6 +6,8 @@ const PI: f32 = 3.14159265358979;
 struct Frame {
     clip_from_world: mat4x4f,
     world_from_clip: mat4x4f,
+    // The camera of the previous frame (for reprojection).
+    previous_clip_from_world: mat4x4f,
     // Rotation of the probe (`[environment] rotation_deg`), in the upper 3×3.
     probe_from_world: mat4x4f,
     camera_position: vec4f,
@@ -13,7 +15,7 @@ struct Frame {
     size: vec4u,
     // Light count, 1 if a probe is present, supersampling factor, radiance mip count.
     counts: vec4u,
-    // Exposure, probe intensity, unused, unused.
+    // Exposure, probe intensity, camera near plane, frame index.
     exposure_env: vec4f,
 }
 

@@ -21,6 +21,10 @@ struct Material {
     // attenuation color, alpha cutoff (< 0: opaque)
     attenuation_cutoff: vec4f,
     emissive: vec4f,
-    // bit 0: has normal map
-    texture_flags: vec4u,
+    // array layers of base color (sRGB), metallic-roughness, normal, occlusion (linear); NO_TEXTURE if absent
+    texture_layers: vec4u,
+    // emissive layer (sRGB), repeat bits (u, v per slot in the order above + emissive), unused, unused
+    texture_info: vec4u,
 }
+
+const NO_TEXTURE: u32 = 0xffffffffu;

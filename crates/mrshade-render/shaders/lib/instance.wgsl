@@ -2,6 +2,7 @@
 struct Instance {
     world_from_object: mat4x4f,
     normal_from_object: mat4x4f,
-    // material, surface flag bits, unused, unused
+    previous_world_from_object: mat4x4f,
+    // material, surface flag bits, first triangle, triangle count
     info: vec4u,
 }

@@ -1,4 +1,5 @@
-//! All primitives in one vertex and one index buffer; one draw per instance.
+//! All primitives in one vertex and one index buffer, a flat triangle table for the compute
+//! rasteriser, and per-instance transforms (current and previous frame, for motion vectors).
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4};
@@ -6,7 +7,7 @@ use mrshade_core::flags::{Realness, SURFACE_REAL};
 use mrshade_scene::Scene;
 use wgpu::util::DeviceExt;
 
-/// Interleaved vertex of every mesh.
+/// Interleaved vertex of every mesh (8 floats; the shaders read it as `array<f32>`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct Vertex {
@@ -18,16 +19,7 @@ pub struct Vertex {
     pub uv: [f32; 2],
 }
 
-impl Vertex {
-    /// The vertex buffer layout of `shaders` (locations 0, 1, 2).
-    pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-        array_stride: std::mem::size_of::<Vertex>() as u64,
-        step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
-    };
-}
-
-/// Mirrors `struct Instance` in gbuffer.wgsl / shadow.wgsl.
+/// Mirrors `struct Instance` in shaders/lib/instance.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuInstance {
@@ -35,37 +27,29 @@ pub struct GpuInstance {
     pub world_from_object: Mat4,
     /// Inverse transpose of `world_from_object` (for normals).
     pub normal_from_object: Mat4,
-    /// Material index, surface flag bits (`SURFACE_REAL`), unused, unused.
+    /// Object → world in the previous frame (for motion vectors).
+    pub previous_world_from_object: Mat4,
+    /// Material index, surface flag bits (`SURFACE_REAL`), first triangle, triangle count.
     pub info: UVec4,
 }
 
-/// One indexed draw: an instance of a primitive.
-#[derive(Clone, Debug)]
-pub struct Draw {
-    /// First index in the shared index buffer.
-    pub first_index: u32,
-    /// Number of indices.
-    pub index_count: u32,
-    /// Added to every index.
-    pub base_vertex: i32,
-    /// Index into the instance buffer (passed as the draw's instance index).
-    pub instance: u32,
-    /// Material index.
-    pub material: usize,
-    /// Real or virtual: decides which shadow maps it casts into.
-    pub realness: Realness,
-}
-
-/// Vertex, index and instance buffers plus the draw list (sorted by material).
+/// Buffers of the scene's geometry.
 pub struct Geometry {
     /// All vertices.
     pub vertices: wgpu::Buffer,
     /// All indices (u32).
     pub indices: wgpu::Buffer,
-    /// `GpuInstance` per draw.
+    /// Per triangle: instance, first index, base vertex, unused.
+    pub triangles: wgpu::Buffer,
+    /// Number of triangles over all instances.
+    pub triangle_count: u32,
+    /// `GpuInstance` per instance.
     pub instances: wgpu::Buffer,
-    /// Draws, sorted by material.
-    pub draws: Vec<Draw>,
+    /// Realness of every instance.
+    pub realness: Vec<Realness>,
+    static_info: Vec<(UVec4, Mat4)>,
+    current: Vec<Mat4>,
+    previous: Vec<Mat4>,
 }
 
 impl Geometry {
@@ -75,7 +59,7 @@ impl Geometry {
         let mut indices = Vec::new();
         let mut ranges = Vec::new();
         for p in &scene.primitives {
-            ranges.push((indices.len() as u32, p.indices.len() as u32, vertices.len() as i32));
+            ranges.push((indices.len() as u32, p.indices.len() as u32, vertices.len() as u32));
             indices.extend_from_slice(&p.indices);
             for i in 0..p.positions.len() {
                 vertices.push(Vertex {
@@ -85,52 +69,79 @@ impl Geometry {
                 });
             }
         }
-        let mut instances = Vec::new();
-        let mut draws = Vec::new();
-        for inst in &scene.instances {
+        let mut triangles: Vec<UVec4> = Vec::new();
+        let mut static_info = Vec::new();
+        for (id, inst) in scene.instances.iter().enumerate() {
             let prim = &scene.primitives[inst.primitive];
             let (first_index, index_count, base_vertex) = ranges[inst.primitive];
             let real = if inst.realness == Realness::Real { SURFACE_REAL } else { 0 };
-            draws.push(Draw {
-                first_index,
-                index_count,
-                base_vertex,
-                instance: instances.len() as u32,
-                material: prim.material,
-                realness: inst.realness,
-            });
-            instances.push(GpuInstance {
-                world_from_object: inst.world_from_object,
-                normal_from_object: inst.world_from_object.inverse().transpose(),
-                info: UVec4::new(prim.material as u32, real, 0, 0),
-            });
+            let first_triangle = triangles.len() as u32;
+            for t in 0..index_count / 3 {
+                triangles.push(UVec4::new(id as u32, first_index + 3 * t, base_vertex, 0));
+            }
+            let info = UVec4::new(prim.material as u32, real, first_triangle, index_count / 3);
+            static_info.push((info, inst.world_from_object));
         }
-        draws.sort_by_key(|d| d.material);
+        let triangle_count = triangles.len() as u32;
         // Buffers may not be empty; a scene without geometry still renders its probe.
         if vertices.is_empty() {
             vertices.push(Vertex::zeroed());
             indices.push(0);
         }
-        if instances.is_empty() {
-            instances.push(GpuInstance::zeroed());
+        if triangles.is_empty() {
+            triangles.push(UVec4::ZERO);
         }
         let init = |label: &str, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
         };
-        Self {
-            vertices: init("scene/vertices", bytemuck::cast_slice(&vertices), wgpu::BufferUsages::VERTEX),
-            indices: init("scene/indices", bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX),
-            instances: init("scene/instances", bytemuck::cast_slice(&instances), wgpu::BufferUsages::STORAGE),
-            draws,
-        }
+        let storage = wgpu::BufferUsages::STORAGE;
+        let current: Vec<Mat4> = static_info.iter().map(|s| s.1).collect();
+        let mut geometry = Self {
+            vertices: init("scene/vertices", bytemuck::cast_slice(&vertices), storage),
+            indices: init("scene/indices", bytemuck::cast_slice(&indices), storage),
+            triangles: init("scene/triangles", bytemuck::cast_slice(&triangles), storage),
+            triangle_count,
+            instances: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("scene/instances"),
+                size: (static_info.len().max(1) * std::mem::size_of::<GpuInstance>()) as u64,
+                usage: storage | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            realness: scene.instances.iter().map(|i| i.realness).collect(),
+            previous: current.clone(),
+            current,
+            static_info,
+        };
+        geometry.previous = geometry.current.clone();
+        geometry
     }
 
-    /// Records `draws` (vertex and index buffers bound here).
-    pub fn draw<'a>(&self, pass: &mut wgpu::RenderPass<'_>, draws: impl Iterator<Item = &'a Draw>) {
-        pass.set_vertex_buffer(0, self.vertices.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for d in draws {
-            pass.draw_indexed(d.first_index..d.first_index + d.index_count, d.base_vertex, d.instance..d.instance + 1);
+    /// Moves instance `index` (takes effect at the next frame).
+    pub fn set_transform(&mut self, index: usize, world_from_object: Mat4) {
+        self.current[index] = world_from_object;
+    }
+
+    /// The transform instance `index` will be rendered with.
+    pub fn transform(&self, index: usize) -> Mat4 {
+        self.current[index]
+    }
+
+    /// Uploads this frame's transforms (with last frame's as "previous") and remembers them.
+    pub fn begin_frame(&mut self, queue: &wgpu::Queue) {
+        let gpu: Vec<GpuInstance> = self
+            .static_info
+            .iter()
+            .zip(self.current.iter().zip(&self.previous))
+            .map(|(&(info, _), (&now, &before))| GpuInstance {
+                world_from_object: now,
+                normal_from_object: now.inverse().transpose(),
+                previous_world_from_object: before,
+                info,
+            })
+            .collect();
+        if !gpu.is_empty() {
+            queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&gpu));
         }
+        self.previous.clone_from(&self.current);
     }
 }

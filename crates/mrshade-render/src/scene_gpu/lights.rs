@@ -44,6 +44,8 @@ pub struct ShadowLayer {
     pub clip_from_world: Mat4,
     /// Which casters are drawn into it.
     pub casters: Realness,
+    /// Near-plane distance of a perspective layer; 0 for orthographic ones.
+    pub near: f32,
 }
 
 /// The lights as the shaders see them, and the shadow layers they use.
@@ -67,9 +69,10 @@ pub fn pack_lights(scene: &Scene, settings: &ShadowSettings) -> (Vec<GpuLight>, 
         let faces = light_faces(light, center, radius, near);
         let texel_at_unit_distance = faces.texel_extent / settings.resolution as f32;
         let first_real = layers.len() as u32;
+        let layer_near = if light.kind == LightKind::Directional { 0.0 } else { near };
         for casters in [Realness::Real, Realness::Virtual] {
             for &clip_from_world in &faces.clip_from_world {
-                layers.push(ShadowLayer { clip_from_world, casters });
+                layers.push(ShadowLayer { clip_from_world, casters, near: layer_near });
             }
         }
         let per_set = faces.clip_from_world.len() as u32;

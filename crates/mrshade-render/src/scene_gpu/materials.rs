@@ -1,12 +1,20 @@
-//! Materials on the GPU: factors in one storage buffer (indexed by the material index stored
-//! in the G-buffer), textures in one bind group per material.
+//! Materials on the GPU: factors in one storage buffer (indexed by the material index in the
+//! G-buffer flags) and every texture in one of two 2D arrays (sRGB colour, linear data), so
+//! that compute passes can sample any material's textures without bindless support (which
+//! lavapipe lacks). Textures are resampled to the arrays' common size when they differ.
 
 use super::mips::rgba8_mips;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
-use mrshade_gpu::{bind, texture::write_level};
+use mrshade_gpu::Target;
+use mrshade_gpu::texture::write_level;
 use mrshade_scene::{AlphaMode, Scene, Texture, TextureRef};
 use wgpu::util::DeviceExt;
+
+/// Marks an absent texture slot.
+pub const NO_TEXTURE: u32 = u32::MAX;
+/// Side of the texture arrays at most; larger textures are downsampled to it.
+pub const MAX_TEXTURE_SIZE: u32 = 2048;
 
 /// Mirrors `struct Material` in shaders/lib/gbuffer.wgsl.
 #[repr(C)]
@@ -24,138 +32,156 @@ pub struct GpuMaterial {
     pub attenuation_cutoff: Vec4,
     /// Emitted radiance (rgb).
     pub emissive: Vec4,
-    /// Bit 0: has a normal map.
-    pub texture_flags: UVec4,
+    /// Array layers of the base color, metallic-roughness, normal and occlusion textures.
+    pub texture_layers: UVec4,
+    /// Emissive layer, repeat bits (2 per slot: u then v, slot order as above + emissive), unused.
+    pub texture_info: UVec4,
 }
 
-impl GpuMaterial {
-    fn new(m: &mrshade_scene::Material) -> Self {
-        let cutoff = match m.alpha_mode {
-            AlphaMode::Mask(c) => c,
-            AlphaMode::Opaque | AlphaMode::Blend => -1.0,
-        };
-        Self {
-            base_color: m.base_color,
-            params: Vec4::new(
-                m.metallic,
-                m.roughness,
-                m.normal_texture.map_or(1.0, |n| n.1),
-                m.occlusion_texture.map_or(0.0, |o| o.1),
-            ),
-            dielectric: m.dielectric_f0().extend(m.specular),
-            transmission: Vec4::new(m.transmission, m.ior, m.thickness, m.attenuation_distance.min(1e30)),
-            attenuation_cutoff: m.attenuation_color.extend(cutoff),
-            emissive: m.emissive.extend(0.0),
-            texture_flags: UVec4::new(m.normal_texture.is_some() as u32, 0, 0, 0),
-        }
-    }
-}
-
-/// The five texture slots of a material, in binding order.
-const SLOTS: usize = 5;
-
-/// Material factors and per-material texture bind groups.
+/// Material factors and the texture arrays.
 pub struct GpuMaterials {
     /// `GpuMaterial` per material.
     pub buffer: wgpu::Buffer,
-    /// Layout of one material's textures (G-buffer group 1).
-    pub layout: wgpu::BindGroupLayout,
-    /// One bind group per material.
-    pub bind_groups: Vec<wgpu::BindGroup>,
+    /// sRGB colour textures (base color, emissive).
+    pub srgb: Target,
+    /// Linear data textures (metallic-roughness, normal, occlusion).
+    pub linear: Target,
+    /// Trilinear, anisotropic, repeating.
+    pub sampler: wgpu::Sampler,
 }
 
 impl GpuMaterials {
     /// Uploads every material and texture of `scene`.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
-        let gpu: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::new).collect();
+        let size = scene.textures.iter().map(|t| t.width.max(t.height)).max().unwrap_or(1).next_power_of_two();
+        let size = size.min(MAX_TEXTURE_SIZE);
+        // Layer of every texture in its array.
+        let mut layers = vec![0u32; scene.textures.len()];
+        let (mut srgb, mut linear) = (Vec::new(), Vec::new());
+        for (i, t) in scene.textures.iter().enumerate() {
+            let list = if t.srgb { &mut srgb } else { &mut linear };
+            layers[i] = list.len() as u32;
+            list.push(t);
+        }
+        let gpu: Vec<GpuMaterial> = scene.materials.iter().map(|m| gpu_material(m, scene, &layers)).collect();
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene/materials"),
             contents: bytemuck::cast_slice(&gpu),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let mut entries = Vec::new();
-        for slot in 0..SLOTS as u32 {
-            entries.push(bind::texture_float(slot, fragment));
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("scene/material_sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 8,
+            ..Default::default()
+        });
+        Self {
+            buffer,
+            srgb: upload_array(device, queue, "scene/textures_srgb", &srgb, size, true),
+            linear: upload_array(device, queue, "scene/textures_linear", &linear, size, false),
+            sampler,
         }
-        for slot in 0..SLOTS as u32 {
-            entries.push(bind::sampler(SLOTS as u32 + slot, fragment, wgpu::SamplerBindingType::Filtering));
-        }
-        let layout = bind::layout(device, "gbuffer/material_layout", &entries);
-
-        let views: Vec<wgpu::TextureView> = scene.textures.iter().map(|t| upload(device, queue, t)).collect();
-        let white = upload(device, queue, &solid("default/white", [255, 255, 255, 255]));
-        let flat_normal = upload(device, queue, &solid("default/normal", [128, 128, 255, 255]));
-        let samplers: Vec<wgpu::Sampler> = (0..4).map(|i| sampler(device, i & 1 != 0, i & 2 != 0)).collect();
-        let sampler_of = |r: Option<TextureRef>| {
-            r.map_or(&samplers[3], |r| {
-                let t = &scene.textures[r.texture];
-                &samplers[t.repeat_u as usize | (t.repeat_v as usize) << 1]
-            })
-        };
-        let bind_groups = scene
-            .materials
-            .iter()
-            .map(|m| {
-                let slots = [
-                    (m.base_color_texture, &white),
-                    (m.metallic_roughness_texture, &white),
-                    (m.normal_texture.map(|n| n.0), &flat_normal),
-                    (m.occlusion_texture.map(|o| o.0), &white),
-                    (m.emissive_texture, &white),
-                ];
-                let mut resources: Vec<wgpu::BindingResource> = slots
-                    .iter()
-                    .map(|(r, default)| wgpu::BindingResource::TextureView(r.map_or(*default, |r| &views[r.texture])))
-                    .collect();
-                resources.extend(slots.iter().map(|(r, _)| wgpu::BindingResource::Sampler(sampler_of(*r))));
-                bind::group(device, &format!("gbuffer/material/{}", m.name), &layout, &resources)
-            })
-            .collect();
-        Self { buffer, layout, bind_groups }
     }
 }
 
-fn solid(name: &str, rgba: [u8; 4]) -> Texture {
-    Texture {
-        name: name.into(),
-        width: 1,
-        height: 1,
-        rgba8: rgba.to_vec(),
-        srgb: false,
-        repeat_u: true,
-        repeat_v: true,
+fn gpu_material(m: &mrshade_scene::Material, scene: &Scene, layers: &[u32]) -> GpuMaterial {
+    let cutoff = match m.alpha_mode {
+        AlphaMode::Mask(c) => c,
+        AlphaMode::Opaque | AlphaMode::Blend => -1.0,
+    };
+    let slots = [
+        m.base_color_texture,
+        m.metallic_roughness_texture,
+        m.normal_texture.map(|n| n.0),
+        m.occlusion_texture.map(|o| o.0),
+        m.emissive_texture,
+    ];
+    let layer = |r: Option<TextureRef>| r.map_or(NO_TEXTURE, |r| layers[r.texture]);
+    let mut repeat_bits = 0u32;
+    for (i, r) in slots.iter().enumerate() {
+        if let Some(r) = r {
+            let t = &scene.textures[r.texture];
+            repeat_bits |= (t.repeat_u as u32) << (2 * i) | (t.repeat_v as u32) << (2 * i + 1);
+        }
+    }
+    GpuMaterial {
+        base_color: m.base_color,
+        params: Vec4::new(
+            m.metallic,
+            m.roughness,
+            m.normal_texture.map_or(1.0, |n| n.1),
+            m.occlusion_texture.map_or(0.0, |o| o.1),
+        ),
+        dielectric: m.dielectric_f0().extend(m.specular),
+        transmission: Vec4::new(m.transmission, m.ior, m.thickness, m.attenuation_distance.min(1e30)),
+        attenuation_cutoff: m.attenuation_color.extend(cutoff),
+        emissive: m.emissive.extend(0.0),
+        texture_layers: UVec4::new(layer(slots[0]), layer(slots[1]), layer(slots[2]), layer(slots[3])),
+        texture_info: UVec4::new(layer(slots[4]), repeat_bits, 0, 0),
     }
 }
 
-fn upload(device: &wgpu::Device, queue: &wgpu::Queue, t: &Texture) -> wgpu::TextureView {
-    let mips = rgba8_mips(t.width, t.height, &t.rgba8, t.srgb);
-    let format = if t.srgb { wgpu::TextureFormat::Rgba8UnormSrgb } else { wgpu::TextureFormat::Rgba8Unorm };
-    let target = mrshade_gpu::Target::new(
+/// A `size × size` 2D array with full mip chains (one layer when `textures` is empty).
+fn upload_array(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    textures: &[&Texture],
+    size: u32,
+    srgb: bool,
+) -> Target {
+    let format = if srgb { wgpu::TextureFormat::Rgba8UnormSrgb } else { wgpu::TextureFormat::Rgba8Unorm };
+    let mips = 1 + size.ilog2();
+    let layers = textures.len().max(1) as u32;
+    let target = Target::new(
         device,
-        &format!("scene/texture/{}", t.name),
-        wgpu::Extent3d { width: t.width, height: t.height, depth_or_array_layers: 1 },
-        1 + mips.len() as u32,
+        label,
+        wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers },
+        mips,
         format,
         wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
     );
-    write_level(queue, &target.texture, 0, (t.width, t.height), 4, &t.rgba8);
-    for (level, (w, h, data)) in mips.iter().enumerate() {
-        write_level(queue, &target.texture, level as u32 + 1, (*w, *h), 4, data);
+    let target = Target {
+        view: target.texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some(label),
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        }),
+        ..target
+    };
+    for (layer, t) in textures.iter().enumerate() {
+        let level0 = resized(t, size);
+        let mut levels = vec![(size, size, level0.clone())];
+        levels.extend(rgba8_mips(size, size, &level0, srgb));
+        for (level, (w, h, data)) in levels.iter().enumerate() {
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &target.texture,
+                    mip_level: level as u32,
+                    origin: wgpu::Origin3d { x: 0, y: 0, z: layer as u32 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                data,
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * 4), rows_per_image: Some(*h) },
+                wgpu::Extent3d { width: *w, height: *h, depth_or_array_layers: 1 },
+            );
+        }
     }
-    target.view
+    if textures.is_empty() {
+        write_level(queue, &target.texture, 0, (1, 1), 4, &[255, 255, 255, 255]);
+    }
+    target
 }
 
-fn sampler(device: &wgpu::Device, repeat_u: bool, repeat_v: bool) -> wgpu::Sampler {
-    let mode = |r: bool| if r { wgpu::AddressMode::Repeat } else { wgpu::AddressMode::ClampToEdge };
-    device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("scene/material_sampler"),
-        address_mode_u: mode(repeat_u),
-        address_mode_v: mode(repeat_v),
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: wgpu::MipmapFilterMode::Linear,
-        anisotropy_clamp: 8,
-        ..Default::default()
-    })
+/// The texels of `t` at `size × size` (bilinear resampling when the size differs).
+fn resized(t: &Texture, size: u32) -> Vec<u8> {
+    if t.width == size && t.height == size {
+        return t.rgba8.clone();
+    }
+    let img = image::RgbaImage::from_raw(t.width, t.height, t.rgba8.clone()).expect("texture size");
+    image::imageops::resize(&img, size, size, image::imageops::FilterType::Triangle).into_raw()
 }

@@ -7,7 +7,7 @@ mod materials;
 mod mips;
 mod probe;
 
-pub use geometry::{Draw, Geometry, GpuInstance, Vertex};
+pub use geometry::{Geometry, GpuInstance, Vertex};
 pub use lights::{GpuLight, ShadowLayer, pack_lights};
 pub use materials::{GpuMaterial, GpuMaterials};
 pub use probe::GpuProbe;

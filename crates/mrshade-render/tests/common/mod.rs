@@ -89,7 +89,7 @@ pub struct Rendered {
 impl Rendered {
     pub fn new(session: Session) -> Self {
         let ctx = mrshade_testkit::gpu();
-        let renderer = Renderer::new(&ctx, &session).unwrap();
+        let mut renderer = Renderer::new(&ctx, &session).unwrap();
         renderer.render_once(&ctx).unwrap();
         let radiance = renderer.read_radiance(&ctx).unwrap();
         Self { ctx, session, renderer, radiance }

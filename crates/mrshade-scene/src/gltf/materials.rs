@@ -115,7 +115,10 @@ pub fn load_material(
 
     let alpha_mode = match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
-        gltf::material::AlphaMode::Mask => AlphaMode::Mask(m.alpha_cutoff().unwrap_or(0.5)),
+        gltf::material::AlphaMode::Mask => {
+            warnings.push(format!("material '{name}': alphaMode MASK is rendered as OPAQUE (no alpha testing yet)"));
+            AlphaMode::Mask(m.alpha_cutoff().unwrap_or(0.5))
+        }
         gltf::material::AlphaMode::Blend => {
             warnings.push(format!("material '{name}': alphaMode BLEND is rendered as OPAQUE"));
             AlphaMode::Blend

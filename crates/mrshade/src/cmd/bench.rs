@@ -66,7 +66,7 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     if !ctx.timestamps {
         bail!("adapter {} does not support timestamp queries, which bench needs", ctx.info.name);
     }
-    let renderer = Renderer::new(&ctx, &session)?;
+    let mut renderer = Renderer::new(&ctx, &session)?;
     let mut profiler = profiler(&ctx, true)?;
     let (w, h) = renderer.output_size();
     log.info(format!("bench {w}×{h}, {} warm-up + {} measured frames", args.warmup, args.frames));

@@ -32,7 +32,7 @@ pub fn demo(args: &DemoArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
 fn render_session(session: &Session, out: &Path, aov_dir: Option<&Path>, gpu: &GpuOptions, log: Log) -> Result<()> {
     let ctx = open_gpu(gpu, log)?;
     let started = Instant::now();
-    let renderer = Renderer::new(&ctx, session)?;
+    let mut renderer = Renderer::new(&ctx, session)?;
     let (w, h) = renderer.output_size();
     log.info(format!(
         "rendering {w}×{h} (method {}, {} composite, supersample {})",

@@ -5,15 +5,9 @@
 // The probe is real light, unshadowed in this method: it adds to L_rv everywhere and to L_r
 // on real surfaces. Where no surface covers a pixel both buffers hold the probe itself.
 
-struct ShadowParams {
-    pcf_radius: i32,
-    normal_offset: f32,
-    _pad: vec2f,
-}
-
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> shadow_params: ShadowParams;
-@group(0) @binding(2) var gbuffer_depth: texture_depth_2d;
+@group(0) @binding(2) var gbuffer_depth_motion: texture_2d<f32>;
 @group(0) @binding(3) var gbuffer_albedo_metallic: texture_2d<f32>;
 @group(0) @binding(4) var gbuffer_normal_roughness: texture_2d<f32>;
 @group(0) @binding(5) var gbuffer_specular: texture_2d<f32>;
@@ -23,8 +17,7 @@ struct ShadowParams {
 @group(1) @binding(0) var<storage, read> materials: array<Material>;
 @group(1) @binding(1) var<storage, read> lights: array<Light>;
 @group(1) @binding(2) var<storage, read> shadow_clip_from_world: array<mat4x4f>;
-@group(1) @binding(3) var shadow_maps: texture_depth_2d_array;
-@group(1) @binding(4) var shadow_sampler: sampler_comparison;
+@group(1) @binding(3) var<storage, read> shadow_texels: array<vec2u>;
 
 @group(2) @binding(0) var env_radiance: texture_2d<f32>;
 @group(2) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -81,7 +74,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         textureStore(out_l_r, pixel, vec4f(probe, 1.0));
         return;
     }
-    let p = world_from_pixel(frame, centre, textureLoad(gbuffer_depth, pixel, 0));
+    let p = world_from_pixel(frame, centre, textureLoad(gbuffer_depth_motion, pixel, 0).x);
     let m = materials[material_of(flags)];
     var s = load_surface(pixel, p);
     s.transmission = m.transmission.x;
@@ -94,8 +87,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         let incident = light_incident(light, p);
         let l_o = brdf_cos(s, incident.l) * incident.radiance;
         if (all(l_o == vec3f(0.0))) { continue; }
-        let v_r = shadow_visibility(light, light.info.y, p, s.normal, shadow_params.pcf_radius, shadow_params.normal_offset);
-        let v_v = shadow_visibility(light, light.info.w, p, s.normal, shadow_params.pcf_radius, shadow_params.normal_offset);
+        let v_r = shadow_visibility(light, light.info.y, p, s.normal);
+        let v_v = shadow_visibility(light, light.info.w, p, s.normal);
         l_rv += l_o * min(v_r, v_v);
         l_r += l_o * light.direction_real.w * r_p * v_r;
     }

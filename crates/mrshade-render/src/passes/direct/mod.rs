@@ -7,19 +7,31 @@ use crate::passes::gbuffer::GBuffer;
 use crate::passes::shadow::ShadowPass;
 use crate::scene_gpu::GpuScene;
 use bytemuck::{Pod, Zeroable};
+use glam::{UVec4, Vec4};
 use mrshade_core::Differential;
 use mrshade_core::settings::ShadowSettings;
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
 
-/// Mirrors `ShadowParams` in direct.wgsl.
+/// Mirrors `ShadowParams` in shaders/lib/shadow.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct ShadowParams {
-    pcf_radius: i32,
-    normal_offset: f32,
-    _pad: [f32; 2],
+pub struct ShadowParams {
+    /// Resolution, PCF radius, unused, unused.
+    pub size: UVec4,
+    /// Normal offset (texels), relative depth bias, unused, unused.
+    pub bias: Vec4,
+}
+
+impl ShadowParams {
+    /// The uniform of `settings`.
+    pub fn new(settings: &ShadowSettings) -> Self {
+        Self {
+            size: UVec4::new(settings.resolution, settings.pcf_radius, 0, 0),
+            bias: Vec4::new(settings.normal_offset, settings.depth_bias, 0.0, 0.0),
+        }
+    }
 }
 
 /// Format of the radiance buffers `L_rv`, `L_r` (linear HDR).
@@ -60,11 +72,7 @@ impl DirectPass {
         let cs = wgpu::ShaderStages::COMPUTE;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
-        let params = ShadowParams {
-            pcf_radius: settings.pcf_radius as i32,
-            normal_offset: settings.normal_offset,
-            _pad: [0.0; 2],
-        };
+        let params = ShadowParams::new(settings);
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("direct/shadow_params"),
             contents: bytemuck::bytes_of(&params),
@@ -77,7 +85,7 @@ impl DirectPass {
             &[
                 bind::uniform(0, cs),
                 bind::uniform(1, cs),
-                bind::texture(2, cs, wgpu::TextureSampleType::Depth, d2),
+                bind::texture(2, cs, unfilterable, d2),
                 bind::texture(3, cs, unfilterable, d2),
                 bind::texture(4, cs, unfilterable, d2),
                 bind::texture(5, cs, unfilterable, d2),
@@ -88,13 +96,7 @@ impl DirectPass {
         let lights_layout = bind::layout(
             device,
             "direct/lights_layout",
-            &[
-                bind::storage(0, cs),
-                bind::storage(1, cs),
-                bind::storage(2, cs),
-                bind::texture(3, cs, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
-                bind::sampler(4, cs, wgpu::SamplerBindingType::Comparison),
-            ],
+            &[bind::storage(0, cs), bind::storage(1, cs), bind::storage(2, cs), bind::storage(3, cs)],
         );
         let probe_layout = bind::layout(
             device,
@@ -121,7 +123,7 @@ impl DirectPass {
                 &[
                     frame.as_entire_binding(),
                     params.as_entire_binding(),
-                    TextureView(&gbuffer.depth.view),
+                    TextureView(&gbuffer.depth_motion.view),
                     TextureView(&gbuffer.albedo_metallic.view),
                     TextureView(&gbuffer.normal_roughness.view),
                     TextureView(&gbuffer.specular.view),
@@ -137,8 +139,7 @@ impl DirectPass {
                     scene.materials.buffer.as_entire_binding(),
                     scene.lights.as_entire_binding(),
                     scene.shadow_matrices.as_entire_binding(),
-                    TextureView(&shadows.maps.view),
-                    Sampler(&shadows.sampler),
+                    shadows.maps.as_entire_binding(),
                 ],
             ),
             bind::group(

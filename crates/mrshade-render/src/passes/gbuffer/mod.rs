@@ -1,16 +1,19 @@
-//! G-buffer pass (Knecht §2.12): rasterises real and virtual geometry from the camera into
-//! depth, albedo/metallic, normal/roughness, specular (dielectric F0/F90),
-//! emission/occlusion and a flag word (covered, real, material index).
+//! G-buffer pass (Knecht §2.12): the camera's visibility buffer from the compute rasteriser,
+//! then a compute resolve into depth and motion, albedo/metallic, normal/roughness, specular
+//! (dielectric F0/F90), emission/occlusion and a flag word (covered, real, material index).
 
-use crate::scene_gpu::{Geometry, GpuMaterials, Vertex};
+use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::scene_gpu::{Geometry, GpuMaterials};
+use crate::uniforms::FrameUniforms;
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 
 /// The G-buffer targets, at the internal (shading) resolution.
 pub struct GBuffer {
-    /// Reversed depth (1 = near plane, 0 = nothing).
-    pub depth: Target,
-    /// Base color (sRGB storage, linear when read), metallic in alpha.
+    /// Reversed depth (1 = near plane, 0 = nothing), offset to the pixel in the previous
+    /// frame (x, y), reversed depth there.
+    pub depth_motion: Target,
+    /// Linear base color, metallic in alpha.
     pub albedo_metallic: Target,
     /// World-space shading normal facing the camera, roughness in alpha.
     pub normal_roughness: Target,
@@ -22,136 +25,152 @@ pub struct GBuffer {
     pub flags: Target,
 }
 
-const COLOR_FORMATS: [wgpu::TextureFormat; 5] = [
-    wgpu::TextureFormat::Rgba8UnormSrgb,
+const FORMATS: [wgpu::TextureFormat; 6] = [
+    wgpu::TextureFormat::Rgba32Float,
+    wgpu::TextureFormat::Rgba16Float,
     wgpu::TextureFormat::Rgba16Float,
     wgpu::TextureFormat::Rgba8Unorm,
     wgpu::TextureFormat::Rgba16Float,
     wgpu::TextureFormat::R32Uint,
 ];
-const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 impl GBuffer {
     /// Allocates the targets at `size`.
     pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+        let usage = wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC;
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST;
         let target = |label: &str, format| Target::new_2d(device, label, size, format, usage);
         Self {
-            depth: target("gbuffer/depth", DEPTH_FORMAT),
-            albedo_metallic: target("gbuffer/albedo_metallic", COLOR_FORMATS[0]),
-            normal_roughness: target("gbuffer/normal_roughness", COLOR_FORMATS[1]),
-            specular: target("gbuffer/specular", COLOR_FORMATS[2]),
-            emission_occlusion: target("gbuffer/emission_occlusion", COLOR_FORMATS[3]),
-            flags: target("gbuffer/flags", COLOR_FORMATS[4]),
+            depth_motion: target("gbuffer/depth_motion", FORMATS[0]),
+            albedo_metallic: target("gbuffer/albedo_metallic", FORMATS[1]),
+            normal_roughness: target("gbuffer/normal_roughness", FORMATS[2]),
+            specular: target("gbuffer/specular", FORMATS[3]),
+            emission_occlusion: target("gbuffer/emission_occlusion", FORMATS[4]),
+            flags: target("gbuffer/flags", FORMATS[5]),
         }
     }
 
-    fn colors(&self) -> [&Target; 5] {
-        [&self.albedo_metallic, &self.normal_roughness, &self.specular, &self.emission_occlusion, &self.flags]
+    fn all(&self) -> [&Target; 6] {
+        [
+            &self.depth_motion,
+            &self.albedo_metallic,
+            &self.normal_roughness,
+            &self.specular,
+            &self.emission_occlusion,
+            &self.flags,
+        ]
     }
 }
 
-/// The G-buffer pass.
+/// Visibility raster and resolve of the camera view.
 pub struct GBufferPass {
-    pipeline: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
+    /// The camera's visibility buffer.
+    pub camera: RasterView,
+    pipeline: wgpu::ComputePipeline,
+    groups: [wgpu::BindGroup; 3],
+    size: (u32, u32),
 }
 
 impl GBufferPass {
-    /// GPU timing label.
+    /// GPU timing label of the visibility raster.
+    pub const RASTER_LABEL: &'static str = "visibility";
+    /// GPU timing label of the resolve.
     pub const LABEL: &'static str = "gbuffer";
 
-    /// Creates the pipeline for `materials` (group 1) and frame/instances/materials (group 0).
-    pub fn new(ctx: &GpuContext, frame: &wgpu::Buffer, geometry: &Geometry, materials: &GpuMaterials) -> Self {
+    /// Creates the camera view and the resolve writing `gbuffer`.
+    pub fn new(
+        ctx: &GpuContext,
+        frame: &wgpu::Buffer,
+        uniforms: &FrameUniforms,
+        rasterizer: &Rasterizer,
+        geometry: &Geometry,
+        materials: &GpuMaterials,
+        gbuffer: &GBuffer,
+    ) -> Self {
         let device = &ctx.device;
-        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let layout =
-            bind::layout(device, "gbuffer/layout", &[bind::uniform(0, vf), bind::storage(1, vf), bind::storage(2, vf)]);
-        let bind_group = bind::group(
-            device,
-            "gbuffer/bind_group",
-            &layout,
-            &[frame.as_entire_binding(), geometry.instances.as_entire_binding(), materials.buffer.as_entire_binding()],
+        let size = uniforms.internal_size();
+        let camera = rasterizer.view(
+            ctx,
+            geometry,
+            "visibility/camera",
+            size,
+            Casters::All,
+            uniforms.clip_from_world,
+            uniforms.exposure_env.z,
+            None,
         );
-        let module = mrshade_gpu::shader::create_module(device, "gbuffer/shader", SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gbuffer/pipeline_layout"),
-            bind_group_layouts: &[Some(&layout), Some(&materials.layout)],
-            immediate_size: 0,
-        });
-        let targets: Vec<Option<wgpu::ColorTargetState>> = COLOR_FORMATS.iter().map(|&f| Some(f.into())).collect();
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("gbuffer/pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(Vertex::LAYOUT)],
-            },
-            // No culling: open and double-sided meshes show both sides (the shader flips the normal).
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Self { pipeline, bind_group }
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let scene_layout = bind::layout(
+            device,
+            "gbuffer/scene_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::storage(1, cs),
+                bind::storage(2, cs),
+                bind::storage(3, cs),
+                bind::storage(4, cs),
+                bind::storage(5, cs),
+                bind::storage(6, cs),
+            ],
+        );
+        let array = wgpu::TextureViewDimension::D2Array;
+        let float = wgpu::TextureSampleType::Float { filterable: true };
+        let texture_layout = bind::layout(
+            device,
+            "gbuffer/texture_layout",
+            &[
+                bind::texture(0, cs, float, array),
+                bind::texture(1, cs, float, array),
+                bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
+        let outputs: Vec<wgpu::BindGroupLayoutEntry> =
+            FORMATS.iter().enumerate().map(|(i, &f)| bind::storage_texture(i as u32, f)).collect();
+        let output_layout = bind::layout(device, "gbuffer/output_layout", &outputs);
+        use wgpu::BindingResource::{Sampler, TextureView};
+        let groups = [
+            bind::group(
+                device,
+                "gbuffer/scene_group",
+                &scene_layout,
+                &[
+                    frame.as_entire_binding(),
+                    geometry.instances.as_entire_binding(),
+                    geometry.vertices.as_entire_binding(),
+                    geometry.indices.as_entire_binding(),
+                    geometry.triangles.as_entire_binding(),
+                    materials.buffer.as_entire_binding(),
+                    camera.target.as_entire_binding(),
+                ],
+            ),
+            bind::group(
+                device,
+                "gbuffer/texture_group",
+                &texture_layout,
+                &[TextureView(&materials.srgb.view), TextureView(&materials.linear.view), Sampler(&materials.sampler)],
+            ),
+            bind::group(device, "gbuffer/output_group", &output_layout, &gbuffer.all().map(|t| TextureView(&t.view))),
+        ];
+        let pipeline = mrshade_gpu::shader::compute_pipeline(
+            device,
+            "gbuffer",
+            SHADER,
+            &[&scene_layout, &texture_layout, &output_layout],
+        );
+        Self { camera, pipeline, groups, size }
     }
 
-    /// Clears `gbuffer` and draws every instance into it.
-    pub fn record(&self, rec: &mut Recorder, geometry: &Geometry, materials: &GpuMaterials, gbuffer: &GBuffer) {
-        let colors: Vec<Option<wgpu::RenderPassColorAttachment>> = gbuffer
-            .colors()
-            .iter()
-            .map(|t| {
-                Some(wgpu::RenderPassColorAttachment {
-                    view: &t.view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })
-            })
-            .collect();
-        let depth = wgpu::RenderPassDepthStencilAttachment {
-            view: &gbuffer.depth.view,
-            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
-            stencil_ops: None,
-        };
-        rec.render(Self::LABEL, &colors, Some(depth), |pass| {
+    /// Rasterises the camera's visibility and resolves the G-buffer.
+    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        rasterizer.record(rec, Self::RASTER_LABEL, [&self.camera]);
+        rec.compute(Self::LABEL, |pass| {
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.set_vertex_buffer(0, geometry.vertices.slice(..));
-            pass.set_index_buffer(geometry.indices.slice(..), wgpu::IndexFormat::Uint32);
-            let mut bound = usize::MAX;
-            for d in &geometry.draws {
-                if d.material != bound {
-                    pass.set_bind_group(1, &materials.bind_groups[d.material], &[]);
-                    bound = d.material;
-                }
-                pass.draw_indexed(
-                    d.first_index..d.first_index + d.index_count,
-                    d.base_vertex,
-                    d.instance..d.instance + 1,
-                );
+            for (i, g) in self.groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
             }
+            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
         });
     }
 }
@@ -161,5 +180,6 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/instance.wgsl",
-    "gbuffer.wgsl",
+    "../../../shaders/lib/triangles.wgsl",
+    "resolve.wgsl",
 );
