@@ -44,6 +44,20 @@ pub fn storage(binding: u32, visibility: ShaderStages) -> Entry {
     }
 }
 
+/// A read-write storage buffer.
+pub fn storage_rw(binding: u32, visibility: ShaderStages) -> Entry {
+    Entry {
+        binding,
+        visibility,
+        ty: BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// A sampled 2D texture of float texels (filterable).
 pub fn texture_float(binding: u32, visibility: ShaderStages) -> Entry {
     texture(binding, visibility, wgpu::TextureSampleType::Float { filterable: true }, wgpu::TextureViewDimension::D2)

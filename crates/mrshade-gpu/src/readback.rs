@@ -63,3 +63,27 @@ pub fn read_r32u(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u32>> 
     anyhow::ensure!(texture.format() == wgpu::TextureFormat::R32Uint, "expected R32Uint");
     Ok(bytemuck::cast_slice(&read_texture(ctx, texture)?).to_vec())
 }
+
+/// Reads a whole buffer (it needs `COPY_SRC`).
+pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>> {
+    let size = source.size();
+    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback/buffer_staging"),
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+    encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
+    ctx.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.wait_idle()?;
+    rx.recv().context("readback callback lost")?.context("mapping the readback buffer failed")?;
+    let out = slice.get_mapped_range().map_err(|e| anyhow::anyhow!("readback buffer not mapped: {e:?}"))?.to_vec();
+    staging.unmap();
+    Ok(out)
+}

@@ -26,6 +26,17 @@ pub fn compute_pipeline(
     source: &str,
     layouts: &[&wgpu::BindGroupLayout],
 ) -> wgpu::ComputePipeline {
+    compute_pipeline_entry(device, label, source, "cs_main", layouts)
+}
+
+/// A compute pipeline running `entry` of `source`.
+pub fn compute_pipeline_entry(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+    layouts: &[&wgpu::BindGroupLayout],
+) -> wgpu::ComputePipeline {
     let module = create_module(device, &format!("{label}/shader"), source);
     let layouts: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(|l| Some(*l)).collect();
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -37,7 +48,7 @@ pub fn compute_pipeline(
         label: Some(&format!("{label}/pipeline")),
         layout: Some(&pipeline_layout),
         module: &module,
-        entry_point: Some("cs_main"),
+        entry_point: Some(entry),
         compilation_options: Default::default(),
         cache: None,
     })

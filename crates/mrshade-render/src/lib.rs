@@ -5,7 +5,9 @@
 //! `Differential { rv: L_rv, r: L_r }` → composite with the photo. `Renderer` owns the GPU
 //! scene, the passes and their targets for one session.
 
+pub mod dir;
 pub mod ibl;
+pub mod limits;
 pub mod outputs;
 pub mod passes;
 pub mod raster;

@@ -1,5 +1,6 @@
 //! The renderer of one session: GPU scene, passes and targets, created once.
 
+use crate::dir::DirPasses;
 use crate::passes::composite::{CompositePass, CompositeTargets};
 use crate::passes::direct::{DirectPass, radiance_targets};
 use crate::passes::gbuffer::{GBuffer, GBufferPass};
@@ -9,7 +10,7 @@ use crate::scene_gpu::GpuScene;
 use crate::uniforms::FrameUniforms;
 use anyhow::Result;
 use mrshade_core::Differential;
-use mrshade_core::settings::RenderSettings;
+use mrshade_core::settings::{Method, RenderSettings};
 use mrshade_gpu::{GpuContext, Target};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
@@ -17,22 +18,51 @@ use wgpu::util::DeviceExt;
 /// Everything needed to render frames of one session.
 pub struct Renderer {
     pub(crate) uniforms: FrameUniforms,
+    /// The camera's `clip_from_world` without the sub-pixel jitter of still images.
+    pub(crate) camera_clip_from_world: glam::Mat4,
+    pub(crate) frame_buffer: wgpu::Buffer,
+    /// Frames rendered so far.
+    pub(crate) frame_index: u32,
     pub(crate) settings: RenderSettings,
     pub(crate) scene: GpuScene,
     pub(crate) rasterizer: Rasterizer,
     pub(crate) shadows: ShadowPass,
     pub(crate) gbuffer: GBuffer,
     pub(crate) gbuffer_pass: GBufferPass,
+    pub(crate) dir: Option<DirPasses>,
     pub(crate) radiance: Differential<Target>,
     pub(crate) direct: DirectPass,
     pub(crate) composite_targets: CompositeTargets,
     pub(crate) composite: CompositePass,
+    /// Settings this device could not honour, and what was used instead.
+    pub warnings: Vec<String>,
 }
 
 impl Renderer {
     /// Uploads `session` and builds every pass. GPU errors become `Err`.
     pub fn new(ctx: &GpuContext, session: &Session) -> Result<Self> {
-        ctx.checked("creating the renderer", || Ok(Self::build(ctx, session)))
+        let max_binding = ctx.device.limits().max_storage_buffer_binding_size;
+        let (settings, warnings) = crate::limits::fit_to_device(&session.settings, &session.scene, max_binding);
+        let fitted;
+        let session = if warnings.is_empty() {
+            session
+        } else {
+            fitted = Session { settings, ..session.clone() };
+            &fitted
+        };
+        let mut renderer = ctx.checked("creating the renderer", || Ok(Self::build(ctx, session)))?;
+        renderer.warnings = warnings;
+        Ok(renderer)
+    }
+
+    /// Moves instance `index` of the session's scene (takes effect at the next frame).
+    pub fn set_instance_transform(&mut self, index: usize, world_from_object: glam::Mat4) {
+        self.scene.geometry.set_transform(index, world_from_object);
+    }
+
+    /// Instance `index`'s world transform.
+    pub fn instance_transform(&self, index: usize) -> glam::Mat4 {
+        self.scene.geometry.transform(index)
     }
 
     fn build(ctx: &GpuContext, session: &Session) -> Self {
@@ -42,7 +72,7 @@ impl Renderer {
         let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame/uniforms"),
             contents: bytemuck::bytes_of(&uniforms),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let photo = upload_photo(ctx, session);
         let settings = session.settings.clone();
@@ -54,22 +84,30 @@ impl Renderer {
         let gbuffer_pass =
             GBufferPass::new(ctx, &frame, &uniforms, &rasterizer, &scene.geometry, &scene.materials, &gbuffer);
         let radiance = radiance_targets(device, internal);
-        let direct = DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, &radiance);
+        let dir = (settings.method == Method::Dir)
+            .then(|| DirPasses::new(ctx, session, &scene, &rasterizer, &frame, &gbuffer, &radiance, internal));
+        let indirect = dir.as_ref().map(|d| &d.filter.merged);
+        let direct = DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, indirect, &radiance);
         let composite_targets = CompositeTargets::new(device, uniforms.output_size());
         let composite =
             CompositePass::new(ctx, &frame, &settings.composite, &radiance, &gbuffer.flags, &photo, &composite_targets);
         Self {
+            camera_clip_from_world: uniforms.clip_from_world,
             uniforms,
+            frame_buffer: frame,
+            frame_index: 0,
             settings,
             scene,
             rasterizer,
             shadows,
             gbuffer,
             gbuffer_pass,
+            dir,
             radiance,
             direct,
             composite_targets,
             composite,
+            warnings: Vec::new(),
         }
     }
 

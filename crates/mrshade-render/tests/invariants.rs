@@ -38,10 +38,16 @@ fn composite_bytes(r: &Rendered) -> Vec<u8> {
     r.renderer.read_composite(&r.ctx).unwrap().image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect()
 }
 
+/// The `dir` method (few frames: its multiple bounces and smoothing run from frame 2 on).
+const DIR: &str = "[output]\nframes = 3\n";
+
 #[test]
 fn no_virtual_content_returns_the_photo() {
-    for extra in ["", "[output]\nsupersample = 2\n", "[composite]\nmode = \"additive\"\n"] {
-        let s = scene(false, false, extra);
+    for extra in ["", "[output]\nsupersample = 2\n", "[composite]\nmode = \"additive\"\n", DIR] {
+        let mut s = scene(false, false, extra);
+        if extra == DIR {
+            s.top_toml = "method = \"dir\"\n".into();
+        }
         let r = s.render();
         let (photo, out) = (photo_bytes(&s), composite_bytes(&r));
         let max = photo.iter().zip(&out).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
@@ -52,8 +58,12 @@ fn no_virtual_content_returns_the_photo() {
 
 #[test]
 fn with_every_object_real_l_rv_equals_l_r_exactly() {
-    let r = scene(true, true, "").render();
-    assert_eq!(r.radiance.rv.pixels, r.radiance.r.pixels);
+    for method in ["direct", "dir"] {
+        let mut s = scene(true, true, DIR);
+        s.top_toml = format!("method = \"{method}\"\n");
+        let r = s.render();
+        assert_eq!(r.radiance.rv.pixels, r.radiance.r.pixels, "{method}");
+    }
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Tier 1 (no GPU): every composed shader validates with naga, and every struct shared by
 //! Rust and WGSL has the same size and member offsets on both sides.
 
-use mrshade_render::passes::{composite, direct, gbuffer};
+use mrshade_render::passes::{composite, direct, filter, gbuffer, indirect, ism, rsm, vpl};
 use mrshade_render::raster;
 use mrshade_render::scene_gpu::{GpuInstance, GpuLight, GpuMaterial};
 use mrshade_render::uniforms::FrameUniforms;
@@ -12,6 +12,16 @@ const MODULES: &[(&str, &str)] = &[
     ("gbuffer", gbuffer::SHADER),
     ("direct", direct::SHADER),
     ("composite", composite::SHADER),
+    ("rsm/resolve", rsm::RESOLVE_SHADER),
+    ("rsm/pyramid", rsm::PYRAMID_SHADER),
+    ("vpl/allocate", vpl::ALLOCATE_SHADER),
+    ("vpl/generate", vpl::GENERATE_SHADER),
+    ("vpl/bounce", vpl::BOUNCE_SHADER),
+    ("ism/splat", ism::SHADER),
+    ("ism/raster", ism::RASTER_SHADER),
+    ("indirect", indirect::SHADER),
+    ("temporal", filter::TEMPORAL_SHADER),
+    ("filter", filter::FILTER_SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {

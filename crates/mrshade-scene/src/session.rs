@@ -5,7 +5,7 @@
 //! background = "background.png" # the camera photo: PNG/JPEG (sRGB) or EXR (linear)
 //! exposure = 0.96               # linear camera value = exposure × scene radiance
 //! camera = "camera"             # optional: glTF camera by node or camera name (default: the first)
-//! method = "direct"             # optional: light-transport method
+//! method = "dir"                # optional: light-transport method ("dir" or "direct")
 //! [environment]                 # optional: the real light probe
 //! image = "environment.exr"     # equirectangular EXR or Radiance HDR
 //! rotation_deg = 0.0            # about +Y, right-handed
@@ -14,8 +14,10 @@
 //! width = 640
 //! height = 480
 //! supersample = 1               # shading samples per pixel per axis (1–4)
+//! frames = 48                   # frames for a still, the last half averaged (default: 48 for dir, 1 for direct)
 //! [composite]                   # optional: see mrshade_core::settings::CompositeSettings
 //! [shadows]                     # optional: see mrshade_core::settings::ShadowSettings
+//! [dir]                         # optional: see mrshade_core::settings::DirSettings
 //! ```
 //! Parsing is strict: an unknown key, a wrong type, a missing file, or a photo whose aspect
 //! ratio does not match the camera is an error naming the file and the field.
@@ -23,7 +25,7 @@
 use crate::{AssetSource, Scene, gltf::load_gltf, images};
 use anyhow::{Context, Result, bail};
 use mrshade_core::HdrImage;
-use mrshade_core::settings::{CompositeSettings, Method, RenderSettings, ShadowSettings};
+use mrshade_core::settings::{CompositeSettings, DirSettings, Method, RenderSettings, ShadowSettings};
 use serde::Deserialize;
 
 /// Largest accepted output side, in pixels.
@@ -48,6 +50,8 @@ struct SessionFile {
     composite: CompositeSettings,
     #[serde(default)]
     shadows: ShadowSettings,
+    #[serde(default)]
+    dir: DirSettings,
 }
 
 #[derive(Deserialize)]
@@ -66,6 +70,7 @@ struct OutputFile {
     width: Option<u32>,
     height: Option<u32>,
     supersample: Option<u32>,
+    frames: Option<u32>,
 }
 
 fn one() -> f32 {
@@ -92,6 +97,19 @@ pub struct OutputSize {
     pub height: u32,
     /// Shading samples per output pixel along each axis (1 = none).
     pub supersample: u32,
+    /// Frames rendered for one still image. Temporal methods converge over the first half;
+    /// the still is the mean of the second half (VPL sampling then averages out).
+    pub frames: u32,
+}
+
+/// Frames a still image takes by default: one for `direct`; 48 for `dir`, whose temporal
+/// smoothing (base confidence 0.9) and multiple bounces converge within 24 frames, the next
+/// 24 being averaged.
+pub fn default_frames(method: Method) -> u32 {
+    match method {
+        Method::Direct => 1,
+        Method::Dir => 48,
+    }
 }
 
 /// Command-line changes applied before the session is parsed, so they are checked as
@@ -162,6 +180,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         method: overrides.method.unwrap_or(file.method),
         composite: file.composite,
         shadows: file.shadows,
+        dir: file.dir,
     };
     settings.validate().map_err(anyhow::Error::msg)?;
 
@@ -181,7 +200,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
             )
         })?;
     }
-    let output = output_size(&file.output, overrides, &photo).with_context(|| field("output"))?;
+    let output = output_size(&file.output, overrides, &photo, settings.method).with_context(|| field("output"))?;
     let background = photo.resized(output.width, output.height);
 
     let mut warnings = scene.warnings.clone();
@@ -266,7 +285,12 @@ fn check_aspect(a: f32, b: f32) -> Result<()> {
     Ok(())
 }
 
-fn output_size(file: &OutputFile, overrides: &SessionOverrides, photo: &HdrImage) -> Result<OutputSize> {
+fn output_size(
+    file: &OutputFile,
+    overrides: &SessionOverrides,
+    photo: &HdrImage,
+    method: Method,
+) -> Result<OutputSize> {
     let width = overrides.width.or(file.width);
     let height = overrides.height.or(file.height);
     let aspect = photo.aspect();
@@ -292,5 +316,9 @@ fn output_size(file: &OutputFile, overrides: &SessionOverrides, photo: &HdrImage
     if !(1..=4).contains(&supersample) {
         bail!("supersample must be between 1 and 4, got {supersample}");
     }
-    Ok(OutputSize { width, height, supersample })
+    let frames = file.frames.unwrap_or(default_frames(method));
+    if !(1..=10_000).contains(&frames) {
+        bail!("frames must be between 1 and 10000, got {frames}");
+    }
+    Ok(OutputSize { width, height, supersample, frames })
 }

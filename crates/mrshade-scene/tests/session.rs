@@ -54,7 +54,7 @@ fn a_complete_session_loads_with_defaults() {
     assert_eq!(s.exposure, 1.5);
     let env = s.environment.as_ref().unwrap();
     assert_eq!((env.rotation_deg, env.intensity), (30.0, 0.5));
-    assert_eq!(s.settings.method, Method::Direct);
+    assert_eq!(s.settings.method, Method::Dir);
     assert_eq!(s.settings.composite.mode, CompositeMode::AlphaScaled);
     assert_eq!(s.scene.cameras[s.camera].node_name, "camera");
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);

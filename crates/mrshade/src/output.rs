@@ -50,6 +50,7 @@ pub fn write_aovs(dir: &Path, aovs: &[Aov], photo: &HdrImage, composite: &HdrIma
             AovImage::Display { width, height, rgb } => {
                 write(&dir.join(format!("{}.png", aov.name)), &encode_png_rgb8(*width, *height, rgb.clone())?)?
             }
+            AovImage::Table(text) => write(&dir.join(format!("{}.csv", aov.name)), text.as_bytes())?,
         }
     }
     write(&dir.join("side_by_side.png"), &encode_png_srgb(&side_by_side(photo, composite))?)

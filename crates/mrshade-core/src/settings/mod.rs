@@ -5,9 +5,11 @@
 //! its trade-off and, where the spec gives one, its source.
 
 mod composite;
+mod dir;
 mod shadows;
 
 pub use composite::{CompositeMode, CompositeSettings};
+pub use dir::{BounceMethod, DirSettings, Distribution, TemporalSettings};
 pub use shadows::ShadowSettings;
 
 use serde::{Deserialize, Serialize};
@@ -18,18 +20,24 @@ use serde::{Deserialize, Serialize};
 pub enum Method {
     /// Direct light only: punctual lights with real-only and virtual-only shadow maps
     /// (Knecht Eq. 5.1–5.5) plus unshadowed image-based light from the probe.
-    #[default]
     Direct,
+    /// Differential instant radiosity (Knecht §2.7–§2.10): VPLs from reflective shadow maps,
+    /// the probe and a multiple-bounce source, imperfect shadow maps, interleaved sampling,
+    /// geometry-aware filtering and temporal smoothing; shadows and light both ways between
+    /// real and virtual.
+    #[default]
+    Dir,
 }
 
 impl Method {
     /// Every method, for `--help` and error messages.
-    pub const ALL: &'static [Method] = &[Method::Direct];
+    pub const ALL: &'static [Method] = &[Method::Dir, Method::Direct];
 
     /// The name used in sessions and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             Method::Direct => "direct",
+            Method::Dir => "dir",
         }
     }
 
@@ -52,13 +60,16 @@ pub struct RenderSettings {
     pub composite: CompositeSettings,
     /// Shadow maps of punctual lights.
     pub shadows: ShadowSettings,
+    /// The `dir` method.
+    pub dir: DirSettings,
 }
 
 impl RenderSettings {
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
         self.composite.validate()?;
-        self.shadows.validate()
+        self.shadows.validate()?;
+        self.dir.validate()
     }
 }
 
@@ -75,7 +86,7 @@ mod tests {
     fn defaults_are_valid_and_documented_values() {
         let s = RenderSettings::default();
         s.validate().unwrap();
-        assert_eq!(s.method, Method::Direct);
+        assert_eq!(s.method, Method::Dir);
         assert_eq!(s.composite.mode, CompositeMode::AlphaScaled);
         assert_eq!(s.shadows.resolution, 2048);
     }
@@ -91,6 +102,6 @@ mod tests {
         for m in Method::ALL {
             assert_eq!(Method::from_name(m.name()).unwrap(), *m);
         }
-        assert!(Method::from_name("magic").unwrap_err().contains("direct"));
+        assert!(Method::from_name("magic").unwrap_err().contains("dir, direct"));
     }
 }

@@ -26,3 +26,8 @@ fn world_from_pixel(frame: Frame, pixel: vec2f, depth: f32) -> vec3f {
     let h = frame.world_from_clip * vec4f(ndc, depth, 1.0);
     return h.xyz / h.w;
 }
+
+// Rec.709 luminance of linear RGB.
+fn luminance(c: vec3f) -> f32 {
+    return dot(c, vec3f(0.2126, 0.7152, 0.0722));
+}

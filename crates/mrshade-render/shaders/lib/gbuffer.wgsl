@@ -23,7 +23,8 @@ struct Material {
     emissive: vec4f,
     // array layers of base color (sRGB), metallic-roughness, normal, occlusion (linear); NO_TEXTURE if absent
     texture_layers: vec4u,
-    // emissive layer (sRGB), repeat bits (u, v per slot in the order above + emissive), unused, unused
+    // emissive layer (sRGB), repeat bits (u, v per slot in the order above + emissive),
+    // 1 if double-sided, unused
     texture_info: vec4u,
 }
 

@@ -2,5 +2,10 @@
 
 pub mod composite;
 pub mod direct;
+pub mod filter;
 pub mod gbuffer;
+pub mod indirect;
+pub mod ism;
+pub mod rsm;
 pub mod shadow;
+pub mod vpl;

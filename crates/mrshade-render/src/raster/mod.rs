@@ -80,16 +80,7 @@ impl Rasterizer {
     pub fn new(ctx: &GpuContext, geometry: &Geometry) -> Self {
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
-        let rw = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: cs,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let rw = |binding| bind::storage_rw(binding, cs);
         let layout = bind::layout(
             device,
             "raster/layout",

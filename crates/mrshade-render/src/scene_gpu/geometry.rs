@@ -2,7 +2,7 @@
 //! rasteriser, and per-instance transforms (current and previous frame, for motion vectors).
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, UVec4};
+use glam::{Mat4, UVec4, Vec3, Vec4};
 use mrshade_core::flags::{Realness, SURFACE_REAL};
 use mrshade_scene::Scene;
 use wgpu::util::DeviceExt;
@@ -48,8 +48,12 @@ pub struct Geometry {
     /// Realness of every instance.
     pub realness: Vec<Realness>,
     static_info: Vec<(UVec4, Mat4)>,
+    /// Object-space bounding sphere of every instance: centre, radius.
+    object_spheres: Vec<Vec4>,
     current: Vec<Mat4>,
     previous: Vec<Mat4>,
+    /// Whether `current` differed from `previous` at the last `begin_frame`.
+    moved: bool,
 }
 
 impl Geometry {
@@ -108,8 +112,14 @@ impl Geometry {
                 mapped_at_creation: false,
             }),
             realness: scene.instances.iter().map(|i| i.realness).collect(),
+            object_spheres: scene
+                .instances
+                .iter()
+                .map(|i| bounding_sphere(&scene.primitives[i.primitive].positions))
+                .collect(),
             previous: current.clone(),
             current,
+            moved: false,
             static_info,
         };
         geometry.previous = geometry.current.clone();
@@ -119,6 +129,22 @@ impl Geometry {
     /// Moves instance `index` (takes effect at the next frame).
     pub fn set_transform(&mut self, index: usize, world_from_object: Mat4) {
         self.current[index] = world_from_object;
+    }
+
+    /// World-space bounding spheres (centre, radius) of the virtual instances, as they will
+    /// be rendered.
+    pub fn virtual_spheres(&self) -> Vec<Vec4> {
+        self.object_spheres
+            .iter()
+            .zip(&self.current)
+            .zip(&self.realness)
+            .filter(|(_, realness)| **realness == Realness::Virtual)
+            .map(|((sphere, m), _)| {
+                let scale =
+                    m.x_axis.truncate().length().max(m.y_axis.truncate().length()).max(m.z_axis.truncate().length());
+                m.transform_point3(sphere.truncate()).extend(sphere.w * scale)
+            })
+            .collect()
     }
 
     /// The transform instance `index` will be rendered with.
@@ -142,6 +168,22 @@ impl Geometry {
         if !gpu.is_empty() {
             queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&gpu));
         }
+        self.moved = self.current != self.previous;
         self.previous.clone_from(&self.current);
     }
+
+    /// Whether an instance moved between the last two frames.
+    pub fn moved(&self) -> bool {
+        self.moved
+    }
+}
+
+/// Centre and radius of the box around `points`.
+fn bounding_sphere(points: &[Vec3]) -> Vec4 {
+    let lo = points.iter().fold(Vec3::splat(f32::INFINITY), |a, &p| a.min(p));
+    let hi = points.iter().fold(Vec3::splat(f32::NEG_INFINITY), |a, &p| a.max(p));
+    if lo.x > hi.x {
+        return Vec4::ZERO;
+    }
+    ((lo + hi) * 0.5).extend((hi - lo).length() * 0.5)
 }

@@ -33,9 +33,9 @@ const LIGHT_SPOT: u32 = 1;
 const LIGHT_DIRECTIONAL: u32 = 2;
 
 /// Spots wider than this (half angle) use six cube faces instead of one frustum.
-const MAX_FRUSTUM_HALF_ANGLE: f32 = 65.0 * std::f32::consts::PI / 180.0;
+pub(crate) const MAX_FRUSTUM_HALF_ANGLE: f32 = 65.0 * std::f32::consts::PI / 180.0;
 /// Extra field of view so that a cone edge or a cube-face edge is inside the map.
-const FOV_MARGIN: f32 = 2.0 * std::f32::consts::PI / 180.0;
+pub const FOV_MARGIN: f32 = 2.0 * std::f32::consts::PI / 180.0;
 
 /// One layer of the shadow-map array.
 #[derive(Clone, Debug)]
@@ -46,6 +46,8 @@ pub struct ShadowLayer {
     pub casters: Realness,
     /// Near-plane distance of a perspective layer; 0 for orthographic ones.
     pub near: f32,
+    /// Index of the light that owns it.
+    pub light: u32,
 }
 
 /// The lights as the shaders see them, and the shadow layers they use.
@@ -57,7 +59,7 @@ pub fn pack_lights(scene: &Scene, settings: &ShadowSettings) -> (Vec<GpuLight>, 
     let near = (radius * 1e-3).clamp(1e-4, 0.05);
     let mut lights = Vec::new();
     let mut layers = Vec::new();
-    for light in &scene.lights {
+    for (light_index, light) in scene.lights.iter().enumerate() {
         let (kind, cone) = match light.kind {
             LightKind::Point => (LIGHT_POINT, (-2.0, 1.0)),
             LightKind::Directional => (LIGHT_DIRECTIONAL, (-2.0, 1.0)),
@@ -72,7 +74,7 @@ pub fn pack_lights(scene: &Scene, settings: &ShadowSettings) -> (Vec<GpuLight>, 
         let layer_near = if light.kind == LightKind::Directional { 0.0 } else { near };
         for casters in [Realness::Real, Realness::Virtual] {
             for &clip_from_world in &faces.clip_from_world {
-                layers.push(ShadowLayer { clip_from_world, casters, near: layer_near });
+                layers.push(ShadowLayer { clip_from_world, casters, near: layer_near, light: light_index as u32 });
             }
         }
         let per_set = faces.clip_from_world.len() as u32;

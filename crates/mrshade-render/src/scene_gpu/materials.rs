@@ -34,7 +34,8 @@ pub struct GpuMaterial {
     pub emissive: Vec4,
     /// Array layers of the base color, metallic-roughness, normal and occlusion textures.
     pub texture_layers: UVec4,
-    /// Emissive layer, repeat bits (2 per slot: u then v, slot order as above + emissive), unused.
+    /// Emissive layer, repeat bits (2 per slot: u then v, slot order as above + emissive),
+    /// 1 if double-sided, unused.
     pub texture_info: UVec4,
 }
 
@@ -121,7 +122,7 @@ fn gpu_material(m: &mrshade_scene::Material, scene: &Scene, layers: &[u32]) -> G
         attenuation_cutoff: m.attenuation_color.extend(cutoff),
         emissive: m.emissive.extend(0.0),
         texture_layers: UVec4::new(layer(slots[0]), layer(slots[1]), layer(slots[2]), layer(slots[3])),
-        texture_info: UVec4::new(layer(slots[4]), repeat_bits, 0, 0),
+        texture_info: UVec4::new(layer(slots[4]), repeat_bits, m.double_sided as u32, 0),
     }
 }
 

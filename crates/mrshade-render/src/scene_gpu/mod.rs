@@ -3,11 +3,13 @@
 
 mod geometry;
 mod lights;
+pub use lights::FOV_MARGIN;
 mod materials;
 mod mips;
 mod probe;
 
 pub use geometry::{Geometry, GpuInstance, Vertex};
+pub(crate) use lights::MAX_FRUSTUM_HALF_ANGLE;
 pub use lights::{GpuLight, ShadowLayer, pack_lights};
 pub use materials::{GpuMaterial, GpuMaterials};
 pub use probe::GpuProbe;

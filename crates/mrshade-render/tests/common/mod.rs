@@ -16,6 +16,11 @@ pub struct Setup {
     pub size: (u32, u32),
     pub photo: Box<dyn Fn(u32, u32) -> [u8; 3]>,
     pub probe: Option<[f32; 3]>,
+    /// The probe is black below the horizon.
+    pub sky_only: bool,
+    /// Keys at the top of the session file (before any table).
+    pub top_toml: String,
+    /// Tables appended to the session file.
     pub extra_toml: String,
 }
 
@@ -26,7 +31,15 @@ impl Setup {
         gltf.camera_node("camera", 1.0, None, [0.0, 1.0, 0.0], quat([1.0, 0.0, 0.0], -std::f32::consts::FRAC_PI_2));
         // Small shadow maps keep lavapipe fast; 512 texels resolve these scenes' shadows.
         let extra_toml = "[shadows]\nresolution = 512\n".to_string();
-        Self { gltf, size: (size, size), photo: Box::new(|_, _| [128, 128, 128]), probe: None, extra_toml }
+        Self {
+            gltf,
+            size: (size, size),
+            photo: Box::new(|_, _| [128, 128, 128]),
+            probe: None,
+            sky_only: false,
+            top_toml: "method = \"direct\"\n".into(),
+            extra_toml,
+        }
     }
 
     /// Adds a Lambertian quad of half size `half` at height `y`.
@@ -61,8 +74,10 @@ impl Setup {
         self.gltf.write_gltf(d, "scene");
         write_png(&d.join("photo.png"), self.size.0, self.size.1, &self.photo);
         let mut toml = "scene = \"scene.gltf\"\nbackground = \"photo.png\"\nexposure = 1.0\n".to_string();
+        toml += &self.top_toml;
         if let Some(c) = self.probe {
-            write_exr(&d.join("probe.exr"), 64, 32, |_, _| c);
+            let sky_only = self.sky_only;
+            write_exr(&d.join("probe.exr"), 64, 32, move |_, y| if sky_only && y >= 16 { [0.0; 3] } else { c });
             toml += "[environment]\nimage = \"probe.exr\"\n";
         }
         toml += &self.extra_toml;
@@ -90,7 +105,7 @@ impl Rendered {
     pub fn new(session: Session) -> Self {
         let ctx = mrshade_testkit::gpu();
         let mut renderer = Renderer::new(&ctx, &session).unwrap();
-        renderer.render_once(&ctx).unwrap();
+        renderer.render_frames(&ctx, session.output.frames, |_| {}).unwrap();
         let radiance = renderer.read_radiance(&ctx).unwrap();
         Self { ctx, session, renderer, radiance }
     }
@@ -111,6 +126,25 @@ impl Rendered {
         };
         let (a, b) = (ndc(1.0), ndc(0.5));
         let t = (height - a.y) / (b.y - a.y);
+        a + (b - a) * t
+    }
+
+    /// Where the centre of internal pixel (x, y) hits the plane x = `at`.
+    pub fn world_on_plane_x(&self, x: u32, y: u32, at: f32) -> Vec3 {
+        let u = FrameUniforms::new(&self.session, 0, 1);
+        let (w, h) = u.internal_size();
+        let ndc = |depth: f32| {
+            let p = u.world_from_clip
+                * Vec4::new(
+                    (x as f32 + 0.5) / w as f32 * 2.0 - 1.0,
+                    1.0 - (y as f32 + 0.5) / h as f32 * 2.0,
+                    depth,
+                    1.0,
+                );
+            p.truncate() / p.w
+        };
+        let (a, b) = (ndc(1.0), ndc(0.5));
+        let t = (at - a.x) / (b.x - a.x);
         a + (b - a) * t
     }
 

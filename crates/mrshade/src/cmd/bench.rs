@@ -67,6 +67,9 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         bail!("adapter {} does not support timestamp queries, which bench needs", ctx.info.name);
     }
     let mut renderer = Renderer::new(&ctx, &session)?;
+    for w in &renderer.warnings {
+        log.warn(w);
+    }
     let mut profiler = profiler(&ctx, true)?;
     let (w, h) = renderer.output_size();
     log.info(format!("bench {w}×{h}, {} warm-up + {} measured frames", args.warmup, args.frames));

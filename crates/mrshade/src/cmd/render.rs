@@ -33,15 +33,27 @@ fn render_session(session: &Session, out: &Path, aov_dir: Option<&Path>, gpu: &G
     let ctx = open_gpu(gpu, log)?;
     let started = Instant::now();
     let mut renderer = Renderer::new(&ctx, session)?;
+    for w in &renderer.warnings {
+        log.warn(w);
+    }
     let (w, h) = renderer.output_size();
     log.info(format!(
-        "rendering {w}×{h} (method {}, {} composite, supersample {})",
+        "rendering {w}×{h} (method {}, {} composite, supersample {}, {} frame{})",
         session.settings.method.name(),
         session.settings.composite.mode.name(),
-        session.output.supersample
+        session.output.supersample,
+        session.output.frames,
+        if session.output.frames == 1 { "" } else { "s" }
     ));
-    renderer.render_once(&ctx)?;
-    let composite = renderer.read_composite(&ctx)?;
+    let frames = session.output.frames;
+    let bar = if log.shows_progress() && frames > 1 {
+        indicatif::ProgressBar::new(frames as u64)
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}")?);
+    let composite = renderer.render_still(&ctx, frames, |i| bar.set_position(i as u64))?;
+    bar.finish_and_clear();
     output::write_image(out, &composite.image)?;
     log.info(format!("wrote {} ({:.2} s)", out.display(), started.elapsed().as_secs_f64()));
     if let Some(dir) = aov_dir {

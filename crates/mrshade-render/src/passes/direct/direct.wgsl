@@ -1,9 +1,11 @@
-// Direct differential shading (Knecht §2.7, Eq. 5.1–5.5): for every pixel and every
-// primary light, the unoccluded radiance L_o is written to both buffers at once:
+// Differential shading of direct light (Knecht §2.7, Eq. 5.1–5.5), plus, with the `dir`
+// method, the merged indirect light. For every pixel and every primary light, the
+// unoccluded radiance L_o is written to both buffers at once:
 //   L_rv += L_o · min(V_r, V_v)          (5.1, 5.3)
 //   L_r  += L_o · r(pl) · r(p) · V_r     (5.2)
-// The probe is real light, unshadowed in this method: it adds to L_rv everywhere and to L_r
-// on real surfaces. Where no surface covers a pixel both buffers hold the probe itself.
+// The probe is real light: it adds to L_rv everywhere and to L_r on real surfaces, unshadowed
+// with `direct`, shadowed through the environment VPLs with `dir`. Where no surface covers a
+// pixel both buffers hold the probe itself.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> shadow_params: ShadowParams;
@@ -13,6 +15,11 @@
 @group(0) @binding(5) var gbuffer_specular: texture_2d<f32>;
 @group(0) @binding(6) var gbuffer_emission_occlusion: texture_2d<f32>;
 @group(0) @binding(7) var gbuffer_flags: texture_2d<u32>;
+// With the `dir` method (shadow_params.size.z == 1): indirect light of both solutions and the
+// environment visibility sums (Σw·V_rv, Σw·V_r, Σw), merged and smoothed.
+@group(0) @binding(8) var indirect_rv: texture_2d<f32>;
+@group(0) @binding(9) var indirect_r: texture_2d<f32>;
+@group(0) @binding(10) var indirect_env: texture_2d<f32>;
 
 @group(1) @binding(0) var<storage, read> materials: array<Material>;
 @group(1) @binding(1) var<storage, read> lights: array<Light>;
@@ -92,9 +99,18 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         l_rv += l_o * min(v_r, v_v);
         l_r += l_o * light.direction_real.w * r_p * v_r;
     }
-    let ambient = env_shading(frame, s, refracted_probe(s, m)) + s.emission;
-    l_rv += ambient;
-    l_r += ambient * r_p;
+    let probe = env_shading(frame, s, refracted_probe(s, m));
+    if (shadow_params.size.z == 1u) {
+        // DIR: the probe's light shadowed by the environment VPLs' visibility ratios, plus the
+        // VPLs' indirect light (whose L_r already carries r(p)).
+        let e = textureLoad(indirect_env, pixel, 0).xyz;
+        let ratio = select(vec2f(1.0), e.xy / e.z, e.z > 0.0);
+        l_rv += probe * ratio.x + s.emission + textureLoad(indirect_rv, pixel, 0).rgb;
+        l_r += (probe * ratio.y + s.emission) * r_p + textureLoad(indirect_r, pixel, 0).rgb;
+    } else {
+        l_rv += probe + s.emission;
+        l_r += (probe + s.emission) * r_p;
+    }
     textureStore(out_l_rv, pixel, vec4f(l_rv, 1.0));
     textureStore(out_l_r, pixel, vec4f(l_r, 1.0));
 }

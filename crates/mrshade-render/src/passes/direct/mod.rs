@@ -4,6 +4,7 @@
 //! Inputs: G-buffer, lights, shadow maps, probe. Outputs: `Differential { rv, r }`.
 
 use crate::passes::gbuffer::GBuffer;
+use crate::passes::indirect::IndirectBuffers;
 use crate::passes::shadow::ShadowPass;
 use crate::scene_gpu::GpuScene;
 use bytemuck::{Pod, Zeroable};
@@ -18,17 +19,17 @@ use wgpu::util::DeviceExt;
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub struct ShadowParams {
-    /// Resolution, PCF radius, unused, unused.
+    /// Resolution, PCF radius, 1 if the `dir` method's indirect buffers are added, unused.
     pub size: UVec4,
     /// Normal offset (texels), relative depth bias, unused, unused.
     pub bias: Vec4,
 }
 
 impl ShadowParams {
-    /// The uniform of `settings`.
-    pub fn new(settings: &ShadowSettings) -> Self {
+    /// The uniform of `settings`; `with_indirect` adds the `dir` method's indirect buffers.
+    pub fn new(settings: &ShadowSettings, with_indirect: bool) -> Self {
         Self {
-            size: UVec4::new(settings.resolution, settings.pcf_radius, 0, 0),
+            size: UVec4::new(settings.resolution, settings.pcf_radius, with_indirect as u32, 0),
             bias: Vec4::new(settings.normal_offset, settings.depth_bias, 0.0, 0.0),
         }
     }
@@ -59,6 +60,7 @@ impl DirectPass {
     pub const LABEL: &'static str = "direct";
 
     /// Binds the G-buffer, scene, shadow maps and probe, writing into `radiance`.
+    #[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a different resource")]
     pub fn new(
         ctx: &GpuContext,
         frame: &wgpu::Buffer,
@@ -66,13 +68,23 @@ impl DirectPass {
         gbuffer: &GBuffer,
         scene: &GpuScene,
         shadows: &ShadowPass,
+        indirect: Option<&IndirectBuffers>,
         radiance: &Differential<Target>,
     ) -> Self {
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
-        let params = ShadowParams::new(settings);
+        let params = ShadowParams::new(settings, indirect.is_some());
+        // Without indirect light the bindings still need textures; these are never read.
+        let placeholder;
+        let indirect = match indirect {
+            Some(i) => i,
+            None => {
+                placeholder = IndirectBuffers::new(device, "direct/no_indirect", (1, 1));
+                &placeholder
+            }
+        };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("direct/shadow_params"),
             contents: bytemuck::bytes_of(&params),
@@ -91,6 +103,9 @@ impl DirectPass {
                 bind::texture(5, cs, unfilterable, d2),
                 bind::texture(6, cs, unfilterable, d2),
                 bind::texture(7, cs, wgpu::TextureSampleType::Uint, d2),
+                bind::texture(8, cs, unfilterable, d2),
+                bind::texture(9, cs, unfilterable, d2),
+                bind::texture(10, cs, unfilterable, d2),
             ],
         );
         let lights_layout = bind::layout(
@@ -129,6 +144,9 @@ impl DirectPass {
                     TextureView(&gbuffer.specular.view),
                     TextureView(&gbuffer.emission_occlusion.view),
                     TextureView(&gbuffer.flags.view),
+                    TextureView(&indirect.light.rv.view),
+                    TextureView(&indirect.light.r.view),
+                    TextureView(&indirect.env.view),
                 ],
             ),
             bind::group(

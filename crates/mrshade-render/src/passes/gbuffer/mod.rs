@@ -181,5 +181,6 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/instance.wgsl",
     "../../../shaders/lib/triangles.wgsl",
+    "../../../shaders/lib/material_textures.wgsl",
     "resolve.wgsl",
 );

@@ -22,19 +22,6 @@
 @group(2) @binding(4) var out_emission_occlusion: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(5) var out_flags: texture_storage_2d<r32uint, write>;
 
-fn wrap(uv: vec2f, bits: u32, slot: u32) -> vec2f {
-    let repeat_u = ((bits >> (2u * slot)) & 1u) != 0u;
-    let repeat_v = ((bits >> (2u * slot + 1u)) & 1u) != 0u;
-    return vec2f(select(clamp(uv.x, 0.0, 1.0), uv.x, repeat_u), select(clamp(uv.y, 0.0, 1.0), uv.y, repeat_v));
-}
-
-fn sample_slot(srgb: bool, layer: u32, bits: u32, slot: u32, uv: vec2f, dx: vec2f, dy: vec2f, fallback: vec4f) -> vec4f {
-    if (layer == NO_TEXTURE) { return fallback; }
-    let st = wrap(uv, bits, slot);
-    if (srgb) { return textureSampleGrad(textures_srgb, texture_sampler, st, layer, dx, dy); }
-    return textureSampleGrad(textures_linear, texture_sampler, st, layer, dx, dy);
-}
-
 fn pixel_ray(pixel: vec2f) -> vec3f {
     return normalize(world_from_pixel(frame, pixel, 0.5) - frame.camera_position.xyz);
 }

@@ -1,0 +1,234 @@
+//! Differential instant radiosity settings (Knecht §2.7–§2.10; parameter table §2.15).
+
+use super::check;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// How VPL slots are shared among the primary light sources (§2.8).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Distribution {
+    /// Every source (each punctual light, the environment, the multi-bounce source) gets the
+    /// same share. The thesis: "In practice we use [this] distribution mode".
+    #[default]
+    Equal,
+    /// Shares proportional to `dir.weights`.
+    Weighted,
+    /// Shares proportional to each source's summed VPL flux in the previous frame.
+    Flux,
+}
+
+/// How the multiple-bounce light source places its VPLs (§2.8).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BounceMethod {
+    /// No multiple-bounce source: one indirect bounce from each primary light.
+    Off,
+    /// DIR v2: a BRDF-importance direction per slot; the nearest candidate point within
+    /// `bounce_cone_deg` of it wins (the thesis's default).
+    #[default]
+    Importance,
+    /// DIR v1: the candidate with the largest outgoing radiance from the source VPL wins
+    /// (biased: over-places VPLs where sources "only see" one surface, Fig. 5.18d).
+    Fitness,
+}
+
+/// Temporal flicker reduction (§2.10, Eq. 5.11–5.15).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TemporalSettings {
+    /// Reuse the previous frame's indirect light at all.
+    pub enabled: bool,
+    /// `w_p`: weights of the screen-position (x, y in [0, 1]) and depth differences;
+    /// thesis (Cornell box): (10, 10, 10000). Smaller values ghost.
+    pub position_weights: [f32; 3],
+    /// `w_n`: weight of the normal difference; thesis 1.0.
+    pub normal_weight: f32,
+    /// `w_i`: weight of the cubed illumination change; thesis 0.025. Too low: slow updates;
+    /// too high: flicker returns.
+    pub illumination_weight: f32,
+    /// `c_B`: base confidence, the largest share of the previous frame; not in the thesis
+    /// (extraction's suggestion 0.8–0.9). Default 0.9.
+    pub base_confidence: f32,
+}
+
+impl Default for TemporalSettings {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            position_weights: [10.0, 10.0, 10000.0],
+            normal_weight: 1.0,
+            illumination_weight: 0.025,
+            base_confidence: 0.9,
+        }
+    }
+}
+
+/// Settings of the `dir` method.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DirSettings {
+    /// VPLs per frame over all sources; thesis 256.
+    pub vpl_count: u32,
+    /// Imperfect-shadow-map tile side per VPL; thesis 128×128.
+    pub ism_resolution: u32,
+    /// Surface points splatted into each VPL's ISM; thesis 1024. Each of the two atlases
+    /// (real-only, virtual-only) has its own points.
+    pub points_per_vpl: u32,
+    /// Interleaved sampling: the G-buffer is split into `interleave × interleave` tiles, each
+    /// shaded by a different subset of the VPLs; thesis 4 (4×4).
+    pub interleave: u32,
+    /// Reflective-shadow-map side per light layer; not in the thesis (suggestion 256–512).
+    pub rsm_resolution: u32,
+    /// How VPL slots are shared among the sources.
+    pub distribution: Distribution,
+    /// Source weights for `distribution = "weighted"`: light names, "environment", "bounce".
+    pub weights: BTreeMap<String, f32>,
+    /// The multiple-bounce method.
+    pub bounce: BounceMethod,
+    /// Cone half-angle of the importance-direction bounce; thesis five degrees.
+    pub bounce_cone_deg: f32,
+    /// Lower bound of the VPL–receiver distance in the geometry term, as a fraction of the
+    /// scene's bounding radius; clamps the 1/d² singularity (not in the thesis; suggestion
+    /// 5–10 % of the scene). Default 0.05.
+    pub clamp_distance: f32,
+    /// Screen-space samples per pixel and frame of the near-field bounce: light between
+    /// surfaces closer than `clamp_distance`, the part of the VPLs' light that clamping
+    /// removes, gathered from the neighbouring pixels' radiance of the previous frame (as
+    /// SSDO complements ISMs, Ritschel et al. 2009). Not in the thesis; 0 turns it off.
+    /// Default 4.
+    pub near_field_samples: u32,
+    /// Side of an ISM splat relative to the spacing of the points (`sqrt(area / points)`);
+    /// not in the thesis (suggestion 1.5–2). Default 1.5.
+    pub splat_scale: f32,
+    /// Depth bias of ISM lookups as a fraction of the distance; default 0.03.
+    pub ism_bias: f32,
+    /// Offset of a receiver along its normal before ISM lookups, in splat half-sizes, so that
+    /// the splats of its own surface do not shadow it; default 1.
+    pub ism_normal_offset: f32,
+    /// Geometry-aware filtering of the interleaved buffers (depth and normal aware).
+    pub filter: bool,
+    /// Temporal smoothing.
+    pub temporal: TemporalSettings,
+}
+
+impl Default for DirSettings {
+    fn default() -> Self {
+        Self {
+            vpl_count: 256,
+            ism_resolution: 128,
+            points_per_vpl: 1024,
+            interleave: 4,
+            rsm_resolution: 256,
+            distribution: Distribution::Equal,
+            weights: BTreeMap::new(),
+            bounce: BounceMethod::Importance,
+            bounce_cone_deg: 5.0,
+            clamp_distance: 0.05,
+            near_field_samples: 4,
+            splat_scale: 1.5,
+            ism_bias: 0.03,
+            ism_normal_offset: 1.0,
+            filter: true,
+            temporal: TemporalSettings::default(),
+        }
+    }
+}
+
+impl DirSettings {
+    /// Checks every value; the error names the offending field.
+    pub fn validate(&self) -> Result<(), String> {
+        let i = self.interleave;
+        check((1..=8).contains(&i), "dir.interleave", format!("must be between 1 and 8, got {i}"))?;
+        check(
+            (i * i..=4096).contains(&self.vpl_count),
+            "dir.vpl_count",
+            format!("must be between interleave² ({}) and 4096, got {}", i * i, self.vpl_count),
+        )?;
+        check(
+            self.ism_resolution.is_power_of_two() && (16..=512).contains(&self.ism_resolution),
+            "dir.ism_resolution",
+            format!("must be a power of two between 16 and 512, got {}", self.ism_resolution),
+        )?;
+        check(
+            (16..=65536).contains(&self.points_per_vpl),
+            "dir.points_per_vpl",
+            format!("must be between 16 and 65536, got {}", self.points_per_vpl),
+        )?;
+        check(
+            self.rsm_resolution.is_power_of_two() && (4..=2048).contains(&self.rsm_resolution),
+            "dir.rsm_resolution",
+            format!("must be a power of two between 4 and 2048, got {}", self.rsm_resolution),
+        )?;
+        check(
+            self.near_field_samples <= 64,
+            "dir.near_field_samples",
+            format!("must be at most 64, got {}", self.near_field_samples),
+        )?;
+        check(
+            self.bounce_cone_deg > 0.0 && self.bounce_cone_deg < 90.0,
+            "dir.bounce_cone_deg",
+            format!("must be in (0, 90), got {}", self.bounce_cone_deg),
+        )?;
+        for (name, value, range) in [
+            ("dir.clamp_distance", self.clamp_distance, 0.0..1.0),
+            ("dir.splat_scale", self.splat_scale, 0.1..10.0),
+            ("dir.ism_bias", self.ism_bias, 0.0..0.5),
+            ("dir.ism_normal_offset", self.ism_normal_offset, 0.0..10.0),
+        ] {
+            check(range.contains(&value), name, format!("must be in [{}, {}), got {value}", range.start, range.end))?;
+        }
+        for (name, w) in &self.weights {
+            check(w.is_finite() && *w >= 0.0, "dir.weights", format!("weight of '{name}' must be ≥ 0, got {w}"))?;
+        }
+        let t = &self.temporal;
+        check(
+            (0.0..1.0).contains(&t.base_confidence),
+            "dir.temporal.base_confidence",
+            format!("must be in [0, 1), got {}", t.base_confidence),
+        )?;
+        check(
+            t.position_weights
+                .iter()
+                .chain([&t.normal_weight, &t.illumination_weight])
+                .all(|w| w.is_finite() && *w >= 0.0),
+            "dir.temporal",
+            "weights must be finite and ≥ 0",
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_the_thesis_values() {
+        let d = DirSettings::default();
+        assert_eq!((d.vpl_count, d.ism_resolution, d.points_per_vpl, d.interleave), (256, 128, 1024, 4));
+        assert_eq!(d.temporal.position_weights, [10.0, 10.0, 10000.0]);
+        assert_eq!((d.temporal.normal_weight, d.temporal.illumination_weight), (1.0, 0.025));
+        assert_eq!(d.bounce_cone_deg, 5.0);
+        d.validate().unwrap();
+    }
+
+    #[test]
+    fn bad_values_name_their_field() {
+        let d = DirSettings { ism_resolution: 100, ..Default::default() };
+        assert!(d.validate().unwrap_err().contains("dir.ism_resolution"));
+        let d = DirSettings { vpl_count: 8, ..Default::default() };
+        assert!(d.validate().unwrap_err().contains("dir.vpl_count"));
+        let mut d = DirSettings::default();
+        d.temporal.base_confidence = 1.0;
+        assert!(d.validate().unwrap_err().contains("base_confidence"));
+    }
+
+    #[test]
+    fn parses_strictly_from_toml() {
+        let d: DirSettings =
+            toml::from_str("vpl_count = 64\nbounce = \"fitness\"\n[temporal]\nbase_confidence = 0.5\n").unwrap();
+        assert_eq!((d.vpl_count, d.bounce, d.temporal.base_confidence), (64, BounceMethod::Fitness, 0.5));
+        assert!(toml::from_str::<DirSettings>("vpl = 64").is_err());
+        assert!(toml::from_str::<DirSettings>("bounce = \"sideways\"").is_err());
+    }
+}

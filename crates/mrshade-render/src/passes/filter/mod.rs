@@ -1,0 +1,244 @@
+//! Temporal smoothing (Knecht §2.10, Eq. 5.11–5.15) and the geometry-aware merge of the
+//! interleaved buffers. The history is double-buffered; the previous frame's depth and
+//! normals are kept for the confidence test.
+
+use crate::passes::gbuffer::GBuffer;
+use crate::passes::indirect::IndirectBuffers;
+use bytemuck::{Pod, Zeroable};
+use glam::{UVec4, Vec4};
+use mrshade_core::settings::{DirSettings, TemporalSettings};
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{GpuContext, Target, bind, wgsl};
+use wgpu::util::DeviceExt;
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct TemporalParams {
+    weights: Vec4,
+    values: Vec4,
+    /// Interleave I, 1 if geometry moved (then the history is clamped to the range of an
+    /// I×I window of new values).
+    block: UVec4,
+}
+
+impl TemporalParams {
+    fn new(t: &TemporalSettings, interleave: u32, exposure: f32, has_history: bool, moved: bool) -> Self {
+        let [wx, wy, wd] = t.position_weights;
+        Self {
+            weights: Vec4::new(wx, wy, wd, t.normal_weight),
+            values: Vec4::new(
+                t.illumination_weight,
+                if t.enabled { t.base_confidence } else { 0.0 },
+                exposure,
+                has_history as u32 as f32,
+            ),
+            block: UVec4::new(interleave, moved as u32, 0, 0),
+        }
+    }
+}
+
+/// Temporal smoothing then filtering of the indirect buffers.
+pub struct FilterPass {
+    /// Smoothed history, `[parity]`.
+    pub history: [IndirectBuffers; 2],
+    /// The filtered result the final shading reads.
+    pub merged: IndirectBuffers,
+    previous_depth_motion: Target,
+    previous_normal_roughness: Target,
+    temporal: wgpu::ComputePipeline,
+    filter: wgpu::ComputePipeline,
+    temporal_params: wgpu::Buffer,
+    settings: TemporalSettings,
+    interleave: u32,
+    moved: bool,
+    exposure: f32,
+    /// `[parity]`: temporal groups 0, 1, 2, then filter groups 0, 1, 2.
+    groups: [[wgpu::BindGroup; 6]; 2],
+    size: (u32, u32),
+    has_history: bool,
+}
+
+impl FilterPass {
+    /// GPU timing label of the temporal step.
+    pub const TEMPORAL_LABEL: &'static str = "temporal";
+    /// GPU timing label of the filter.
+    pub const LABEL: &'static str = "filter";
+
+    /// Builds both steps over `input` (the interleaved shading output).
+    pub fn new(
+        ctx: &GpuContext,
+        frame: &wgpu::Buffer,
+        settings: &DirSettings,
+        exposure: f32,
+        gbuffer: &GBuffer,
+        input: &IndirectBuffers,
+    ) -> Self {
+        let device = &ctx.device;
+        let size = input.env.size();
+        let history = [
+            IndirectBuffers::new(device, "temporal/history0", size),
+            IndirectBuffers::new(device, "temporal/history1", size),
+        ];
+        let merged = IndirectBuffers::new(device, "filter/merged", size);
+        let copy_usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+        let previous_depth_motion = Target::new_2d(
+            device,
+            "temporal/previous_depth_motion",
+            size,
+            gbuffer.depth_motion.texture.format(),
+            copy_usage,
+        );
+        let previous_normal_roughness = Target::new_2d(
+            device,
+            "temporal/previous_normal_roughness",
+            size,
+            gbuffer.normal_roughness.texture.format(),
+            copy_usage,
+        );
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let d2 = wgpu::TextureViewDimension::D2;
+        let temporal_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("temporal/params"),
+            contents: bytemuck::bytes_of(&TemporalParams::new(
+                &settings.temporal,
+                settings.interleave,
+                exposure,
+                false,
+                false,
+            )),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let filter_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("filter/params"),
+            contents: bytemuck::bytes_of(&UVec4::new(settings.interleave, settings.filter as u32, 0, 0)),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let tex = |b| bind::texture(b, cs, unfilterable, d2);
+        let temporal_layout = bind::layout(
+            device,
+            "temporal/gbuffer_layout",
+            &[bind::uniform(0, cs), bind::uniform(1, cs), tex(2), tex(3), tex(4), tex(5)],
+        );
+        let inputs6: Vec<wgpu::BindGroupLayoutEntry> = (0..6).map(tex).collect();
+        let temporal_in_layout = bind::layout(device, "temporal/in_layout", &inputs6);
+        let filter_layout = bind::layout(
+            device,
+            "filter/gbuffer_layout",
+            &[bind::uniform(0, cs), bind::uniform(1, cs), tex(2), tex(3)],
+        );
+        let in_layout = bind::layout(device, "filter/in_layout", &IndirectBuffers::sampled_entries());
+        let out_layout = bind::layout(device, "filter/out_layout", &IndirectBuffers::storage_entries());
+        use wgpu::BindingResource::TextureView;
+        let groups = [0usize, 1].map(|parity| {
+            let (now, before) = (&history[parity], &history[1 - parity]);
+            let mut temporal_inputs: Vec<wgpu::BindingResource> = input.resources().into();
+            temporal_inputs.extend(before.resources());
+            [
+                bind::group(
+                    device,
+                    "temporal/gbuffer_group",
+                    &temporal_layout,
+                    &[
+                        frame.as_entire_binding(),
+                        temporal_params.as_entire_binding(),
+                        TextureView(&gbuffer.depth_motion.view),
+                        TextureView(&gbuffer.normal_roughness.view),
+                        TextureView(&previous_depth_motion.view),
+                        TextureView(&previous_normal_roughness.view),
+                    ],
+                ),
+                bind::group(device, "temporal/in_group", &temporal_in_layout, &temporal_inputs),
+                bind::group(device, "temporal/out_group", &out_layout, &now.resources()),
+                bind::group(
+                    device,
+                    "filter/gbuffer_group",
+                    &filter_layout,
+                    &[
+                        frame.as_entire_binding(),
+                        filter_params.as_entire_binding(),
+                        TextureView(&gbuffer.depth_motion.view),
+                        TextureView(&gbuffer.normal_roughness.view),
+                    ],
+                ),
+                bind::group(device, "filter/in_group", &in_layout, &now.resources()),
+                bind::group(device, "filter/out_group", &out_layout, &merged.resources()),
+            ]
+        });
+        let temporal = mrshade_gpu::shader::compute_pipeline(
+            device,
+            "temporal",
+            TEMPORAL_SHADER,
+            &[&temporal_layout, &temporal_in_layout, &out_layout],
+        );
+        let filter = mrshade_gpu::shader::compute_pipeline(
+            device,
+            "filter",
+            FILTER_SHADER,
+            &[&filter_layout, &in_layout, &out_layout],
+        );
+        Self {
+            history,
+            merged,
+            previous_depth_motion,
+            previous_normal_roughness,
+            temporal,
+            filter,
+            temporal_params,
+            settings: settings.temporal,
+            interleave: settings.interleave,
+            exposure,
+            groups,
+            size,
+            has_history: false,
+            moved: false,
+        }
+    }
+
+    /// Tells the temporal step whether a previous frame exists (false after a reset) and
+    /// whether geometry moved since it (then the history is clamped, see temporal.wgsl).
+    pub fn prepare(&mut self, queue: &wgpu::Queue, has_history: bool, moved: bool) {
+        if (has_history, moved) != (self.has_history, self.moved) {
+            self.has_history = has_history;
+            self.moved = moved;
+            let p = TemporalParams::new(&self.settings, self.interleave, self.exposure, has_history, moved);
+            queue.write_buffer(&self.temporal_params, 0, bytemuck::bytes_of(&p));
+        }
+    }
+
+    /// Smooths into history `parity`, filters into `merged`, then keeps this frame's depth
+    /// and normals for the next one.
+    pub fn record(&self, rec: &mut Recorder, gbuffer: &GBuffer, parity: usize) {
+        let [t0, t1, t2, f0, f1, f2] = &self.groups[parity];
+        let (x, y) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
+        rec.compute(Self::TEMPORAL_LABEL, |pass| {
+            pass.set_pipeline(&self.temporal);
+            pass.set_bind_group(0, t0, &[]);
+            pass.set_bind_group(1, t1, &[]);
+            pass.set_bind_group(2, t2, &[]);
+            pass.dispatch_workgroups(x, y, 1);
+        });
+        rec.compute(Self::LABEL, |pass| {
+            pass.set_pipeline(&self.filter);
+            pass.set_bind_group(0, f0, &[]);
+            pass.set_bind_group(1, f1, &[]);
+            pass.set_bind_group(2, f2, &[]);
+            pass.dispatch_workgroups(x, y, 1);
+        });
+        for (from, to) in [
+            (&gbuffer.depth_motion, &self.previous_depth_motion),
+            (&gbuffer.normal_roughness, &self.previous_normal_roughness),
+        ] {
+            rec.encoder.copy_texture_to_texture(
+                from.texture.as_image_copy(),
+                to.texture.as_image_copy(),
+                wgpu::Extent3d { width: self.size.0, height: self.size.1, depth_or_array_layers: 1 },
+            );
+        }
+    }
+}
+
+/// The temporal module.
+pub const TEMPORAL_SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "temporal.wgsl");
+/// The filter module.
+pub const FILTER_SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "filter.wgsl");

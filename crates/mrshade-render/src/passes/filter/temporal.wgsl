@@ -1,0 +1,127 @@
+// Temporal flicker reduction (Knecht §2.10, Eq. 5.11–5.15), applied identically to the
+// indirect buffers L_rv, L_r and the environment visibility sums, so that ΔL stays
+// consistent. The previous frame's value is found through the G-buffer's motion; its weight
+// (confidence) drops with position, depth, normal and illumination changes:
+//   ε_pos = |(Δx, Δy, Δd) ⊙ w_p|,  ε_n = (1 − n·n_prev) w_n,  ε_i = sat(|I − I_prev|³) w_i
+//   c = sat(1 − max(ε_pos, ε_n, ε_i)) · c_B,   I = c·I_prev + (1 − c)·I_new
+// Beyond the thesis, on frames where geometry moved the history is first clamped to the
+// range of the new values in the I×I window around the pixel (which holds every VPL subset
+// once): where a virtual object moved away, its old shadow lies outside that range and is
+// dropped at once. ε_i alone (w_i = 0.025) lets the history outlive such a change by many
+// frames, a visible trail. Static frames keep the plain smoothing: the range of one frame's
+// interleaved values is noisy, and clamping to it costs accuracy where nothing changed.
+
+struct TemporalParams {
+    // w_p (x, y in [0, 1] screen units, reversed depth), w_n
+    weights: vec4f,
+    // w_i, c_B, exposure, 1 if a history exists
+    values: vec4f,
+    // interleave I, 1 if geometry moved, unused…
+    block: vec4u,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: TemporalParams;
+@group(0) @binding(2) var gbuffer_depth_motion: texture_2d<f32>;
+@group(0) @binding(3) var gbuffer_normal_roughness: texture_2d<f32>;
+@group(0) @binding(4) var previous_depth_motion: texture_2d<f32>;
+@group(0) @binding(5) var previous_normal_roughness: texture_2d<f32>;
+
+@group(1) @binding(0) var new_rv: texture_2d<f32>;
+@group(1) @binding(1) var new_r: texture_2d<f32>;
+@group(1) @binding(2) var new_env: texture_2d<f32>;
+@group(1) @binding(3) var history_rv: texture_2d<f32>;
+@group(1) @binding(4) var history_r: texture_2d<f32>;
+@group(1) @binding(5) var history_env: texture_2d<f32>;
+
+@group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(2) var out_env: texture_storage_2d<rgba16float, write>;
+
+fn confidence(pixel: vec2i) -> f32 {
+    if (params.values.w == 0.0) { return 0.0; }
+    let dm = textureLoad(gbuffer_depth_motion, pixel, 0);
+    if (dm.x == 0.0) { return 0.0; }
+    let size = vec2f(frame.size.xy);
+    let previous_pixel = vec2f(pixel) + 0.5 + dm.yz;
+    let q = vec2i(floor(previous_pixel));
+    if (any(q < vec2i(0)) || any(q >= vec2i(frame.size.xy))) { return 0.0; }
+    let stored = textureLoad(previous_depth_motion, q, 0).x;
+    if (stored == 0.0) { return 0.0; }
+    let delta = vec3f((previous_pixel - (vec2f(q) + 0.5)) / size, dm.w - stored);
+    let e_pos = length(delta * params.weights.xyz);
+    let n = textureLoad(gbuffer_normal_roughness, pixel, 0).xyz;
+    let n_prev = textureLoad(previous_normal_roughness, q, 0).xyz;
+    let e_n = (1.0 - dot(n, n_prev)) * params.weights.w;
+    let exposure = params.values.z;
+    let i_new = luminance(exposure * textureLoad(new_rv, pixel, 0).rgb);
+    let i_prev = luminance(exposure * textureLoad(history_rv, q, 0).rgb);
+    let change = clamp(abs(i_new - i_prev), 0.0, 1.0);
+    let e_i = change * change * change * params.values.x;
+    return clamp(1.0 - max(e_pos, max(e_n, e_i)), 0.0, 1.0) * params.values.y;
+}
+
+struct Window {
+    lo_rv: vec4f,
+    hi_rv: vec4f,
+    lo_r: vec4f,
+    hi_r: vec4f,
+    lo_env: vec4f,
+    hi_env: vec4f,
+}
+
+// Per-channel range of the new values over the I×I window around `pixel` (same surface only).
+fn new_range(pixel: vec2i) -> Window {
+    let i = i32(params.block.x);
+    let start = pixel - vec2i(i / 2);
+    let depth = textureLoad(gbuffer_depth_motion, pixel, 0).x;
+    var w: Window;
+    w.lo_rv = vec4f(3.0e38);
+    w.hi_rv = vec4f(-3.0e38);
+    w.lo_r = w.lo_rv;
+    w.hi_r = w.hi_rv;
+    w.lo_env = w.lo_rv;
+    w.hi_env = w.hi_rv;
+    for (var y = 0; y < i; y++) {
+        for (var x = 0; x < i; x++) {
+            let q = clamp(start + vec2i(x, y), vec2i(0), vec2i(frame.size.xy) - 1);
+            let dq = textureLoad(gbuffer_depth_motion, q, 0).x;
+            if (dq == 0.0 || abs(dq - depth) > 0.05 * depth) { continue; }
+            let rv = textureLoad(new_rv, q, 0);
+            let r = textureLoad(new_r, q, 0);
+            let env = textureLoad(new_env, q, 0);
+            w.lo_rv = min(w.lo_rv, rv);
+            w.hi_rv = max(w.hi_rv, rv);
+            w.lo_r = min(w.lo_r, r);
+            w.hi_r = max(w.hi_r, r);
+            w.lo_env = min(w.lo_env, env);
+            w.hi_env = max(w.hi_env, env);
+        }
+    }
+    return w;
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.xy)) { return; }
+    let pixel = vec2i(id.xy);
+    let c = confidence(pixel);
+    let dm = textureLoad(gbuffer_depth_motion, pixel, 0);
+    let q = clamp(vec2i(floor(vec2f(pixel) + 0.5 + dm.yz)), vec2i(0), vec2i(frame.size.xy) - 1);
+    let new_rv_value = textureLoad(new_rv, pixel, 0);
+    let new_r_value = textureLoad(new_r, pixel, 0);
+    let new_env_value = textureLoad(new_env, pixel, 0);
+    if (c == 0.0 || params.block.y == 0u) {
+        textureStore(out_rv, pixel, mix(new_rv_value, textureLoad(history_rv, q, 0), c));
+        textureStore(out_r, pixel, mix(new_r_value, textureLoad(history_r, q, 0), c));
+        textureStore(out_env, pixel, mix(new_env_value, textureLoad(history_env, q, 0), c));
+        return;
+    }
+    let w = new_range(pixel);
+    let old_rv = clamp(textureLoad(history_rv, q, 0), w.lo_rv, w.hi_rv);
+    let old_r = clamp(textureLoad(history_r, q, 0), w.lo_r, w.hi_r);
+    let old_env = clamp(textureLoad(history_env, q, 0), w.lo_env, w.hi_env);
+    textureStore(out_rv, pixel, mix(new_rv_value, old_rv, c));
+    textureStore(out_r, pixel, mix(new_r_value, old_r, c));
+    textureStore(out_env, pixel, mix(new_env_value, old_env, c));
+}

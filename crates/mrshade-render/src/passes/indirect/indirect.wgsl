@@ -1,0 +1,148 @@
+// Interleaved indirect shading (Knecht §2.7 Eq. 5.6–5.8, §2.10): pixel (x, y) is shaded by
+// the VPLs i ≡ (x mod I) + I·(y mod I) (mod I²), a different subset for each pixel of an I×I
+// block, scaled by I² so that each pixel estimates the full sum; the filter pass then merges
+// the block. Both buffers are written from the same evaluation:
+//   L_rv += L_o · (1 − ir) · min(V_r, V_v)          (5.6, 5.8)
+//   L_r  += L_o · x̄ · r(p) · V_r                     (5.7, with the path flag of §2.8)
+// (plus the light of each VPL's co-located VPL3, see vpl.wgsl).
+// Directional (environment) VPLs carry the probe's direct light: for them the pass sums the
+// cosine-weighted visibilities Σw·V_rv, Σw·V_r and Σw, from which the final pass scales the
+// probe's exact image-based light (a ratio estimator of shadowed light, Heitz et al. 2018):
+// the probe's shadows come from the environment VPLs and their ISMs, its light from the
+// prefiltered probe, so sun and lamp pixels neither vanish nor sparkle.
+
+struct IndirectParams {
+    // interleave I, VPL count, near-field samples, unused
+    info: vec4u,
+    // clamp distance d_min (m), unused…
+    values: vec4f,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: IndirectParams;
+@group(0) @binding(2) var gbuffer_depth_motion: texture_2d<f32>;
+@group(0) @binding(3) var gbuffer_albedo_metallic: texture_2d<f32>;
+@group(0) @binding(4) var gbuffer_normal_roughness: texture_2d<f32>;
+@group(0) @binding(5) var gbuffer_specular: texture_2d<f32>;
+@group(0) @binding(6) var gbuffer_flags: texture_2d<u32>;
+@group(0) @binding(7) var<storage, read> materials: array<Material>;
+
+@group(1) @binding(0) var<storage, read> vpls: array<Vpl>;
+@group(1) @binding(1) var<uniform> ism: IsmParams;
+@group(1) @binding(2) var<storage, read> ism_real: array<u32>;
+@group(1) @binding(3) var<storage, read> ism_virtual: array<u32>;
+
+@group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(2) var out_env: texture_storage_2d<rgba16float, write>;
+
+// The previous frame's radiance (source of the near-field bounce, nearfield.wgsl).
+@group(3) @binding(0) var previous_l_rv: texture_2d<f32>;
+@group(3) @binding(1) var previous_l_r: texture_2d<f32>;
+
+// Visibility of VPL `index` at receiver `p` (normal `n`) past the casters of one atlas.
+// Offsets and biases keep a surface from shadowing itself; they are needed only where the
+// receiver's own surface is in the atlas (a real receiver in the real atlas, a virtual one
+// in the virtual atlas). Elsewhere they would only grow the other atlas's shadows, most
+// visibly where a virtual object touches the real surface it stands on.
+fn ism_visible(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_atlas: bool) -> f32 {
+    let first = ism_project(v, p, ism, virtual_atlas);
+    let extent = ism_texel_extent(v, first.depth, ism, virtual_atlas);
+    // Half a texel of depth bias against the quantisation of the other atlas's depths.
+    var offset = 0.0;
+    var limit_bias = 0.5 * extent;
+    if (own_atlas) {
+        if (vpl_kind(v) == VPL_DIRECTIONAL) {
+            // Exact triangle maps: a texel-and-a-half of normal offset and half a texel of
+            // depth bias suffice; a bias relative to the map's sphere would erase the
+            // shadows of thin casters (a book on a desk) under a room-sized real proxy.
+            offset = 1.5 * extent;
+            limit_bias = 0.5 * extent;
+        } else {
+            // Lift the receiver off its own surface's splats: by a texel and by the splat size.
+            let splat = select(ism.splat.x, ism.splat.y, virtual_atlas) * ism.splat.w;
+            offset = max(extent, splat);
+            limit_bias = first.depth * ism.splat.z + extent;
+        }
+    }
+    let c = ism_project(v, p + n * offset, ism, virtual_atlas);
+    if (!c.valid) { return 1.0; }
+    let i = ism_texel_index(index, c.uv, ism);
+    let stored = select(ism_real[i], ism_virtual[i], virtual_atlas);
+    return select(0.0, 1.0, ism_decode(stored) >= c.depth - limit_bias);
+}
+
+// (V_r, V_v) of VPL `index` at receiver `p` with normal `n`, on a real or virtual surface.
+fn ism_visibility(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool) -> vec2f {
+    return vec2f(ism_visible(index, v, p, n, false, real), ism_visible(index, v, p, n, true, !real));
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.xy)) { return; }
+    let pixel = vec2i(id.xy);
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    if (!is_covered(flags)) {
+        textureStore(out_rv, pixel, vec4f(0.0));
+        textureStore(out_r, pixel, vec4f(0.0));
+        textureStore(out_env, pixel, vec4f(0.0));
+        return;
+    }
+    let p = world_from_pixel(frame, vec2f(id.xy) + 0.5, textureLoad(gbuffer_depth_motion, pixel, 0).x);
+    let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
+    let nr = textureLoad(gbuffer_normal_roughness, pixel, 0);
+    let sp = textureLoad(gbuffer_specular, pixel, 0);
+    var s: Surface;
+    s.position = p;
+    s.normal = normalize(nr.xyz);
+    s.view = normalize(frame.camera_position.xyz - p);
+    s.base_color = am.rgb;
+    s.metallic = am.a;
+    s.roughness = nr.a;
+    s.dielectric_f0 = sp.rgb;
+    s.dielectric_f90 = sp.a;
+    s.transmission = materials[material_of(flags)].transmission.x;
+    s.emission = vec3f(0.0);
+    s.occlusion = 1.0;
+    let r_p = r_of(flags);
+    let receiver_real = is_real(flags);
+
+    let interleave = params.info.x;
+    let step = interleave * interleave;
+    // The subset of a pixel rotates from frame to frame (7 is coprime with every I² ≤ 64 that
+    // is not a multiple of 7), so temporal smoothing sees every subset at every pixel.
+    let frame_index = u32(frame.exposure_env.w);
+    let subset = ((id.x % interleave) + interleave * (id.y % interleave) + 7u * frame_index) % step;
+    let d_min2 = params.values.x * params.values.x;
+    var l_rv = vec3f(0.0);
+    var l_r = vec3f(0.0);
+    var env = vec3f(0.0);
+    for (var i = subset; i < params.info.y; i += step) {
+        let v = vpls[i];
+        let kind = vpl_kind(v);
+        if (kind == VPL_SURFACE) {
+            let to = v.position.xyz - p;
+            let d2 = max(dot(to, to), 1e-12);
+            let l = to * inverseSqrt(d2);
+            if (dot(s.normal, l) <= 0.0) { continue; }
+            let emission = vpl_emission(v, -l);
+            if (all(emission == vec3f(0.0))) { continue; }
+            let transfer = brdf_cos(s, l) * emission / max(d2, d_min2);
+            let l_o = transfer * v.power.rgb;
+            let vis = ism_visibility(i, v, p, s.normal, receiver_real);
+            let route = vpl_routing(v.info.x, r_p, vis);
+            l_rv += l_o * route.x;
+            l_r += l_o * route.y + transfer * v.power_ir.rgb * route.z;
+        } else if (kind == VPL_DIRECTIONAL) {
+            let w = luminance(v.power.rgb) * max(dot(s.normal, -v.position.xyz), 0.0);
+            if (w <= 0.0) { continue; }
+            let vis = ism_visibility(i, v, p, s.normal, receiver_real);
+            env += vec3f(w * min(vis.x, vis.y), w * vis.x, w);
+        }
+    }
+    let scale = f32(step);
+    let near = near_field(pixel, s, r_p, params.values.x, params.info.z, frame_index);
+    textureStore(out_rv, pixel, vec4f(l_rv * scale + near.rv, 1.0));
+    textureStore(out_r, pixel, vec4f(l_r * scale + near.r, 1.0));
+    textureStore(out_env, pixel, vec4f(env, 1.0));
+}

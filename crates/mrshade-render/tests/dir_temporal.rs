@@ -1,0 +1,126 @@
+//! Temporal behaviour of the `dir` method (Knecht §2.10): a fixed view does not flicker, a
+//! moving virtual object leaves no trail, and multiple bounces converge to the closed form.
+
+mod common;
+
+use common::{Rendered, Setup};
+use glam::{Mat4, Vec3};
+use mrshade_core::color::linear_to_srgb_u8;
+use mrshade_core::flags::Realness;
+use mrshade_render::Renderer;
+use serde_json::json;
+
+const SIZE: u32 = 64;
+
+/// A real floor and box under a real spot and a probe, with a virtual cube at `x`.
+fn scene(x: f32, frames: u32) -> Setup {
+    let mut s = Setup::top_down(SIZE);
+    s.photo = Box::new(|x, y| [(100 + x % 7 * 3) as u8, (90 + y % 5 * 4) as u8, 80]);
+    s.probe = Some([0.5, 0.55, 0.6]);
+    s.top_toml = "method = \"dir\"\n".into();
+    s.extra_toml = format!("[output]\nframes = {frames}\n[shadows]\nresolution = 512\n");
+    s.plane(2.0, 0.0, 0.5, true).cube([-0.25, 0.06, 0.2], 0.06, true).cube([x, 0.06, 0.0], 0.06, false).light(
+        json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.9}}),
+        [0.1, 0.9, 0.1],
+        true,
+    );
+    s
+}
+
+fn srgb(r: &Renderer, ctx: &mrshade_gpu::GpuContext) -> Vec<u8> {
+    r.read_composite(ctx).unwrap().image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect()
+}
+
+/// 60 frames of a fixed view: the last 30 differ from each other by a mean FLIP < 0.01.
+#[test]
+fn a_fixed_view_does_not_flicker() {
+    let (_dir, session) = scene(0.0, 30).session();
+    let mut r = Rendered::new(session);
+    let mut previous = srgb(&r.renderer, &r.ctx);
+    let mut flips = Vec::new();
+    for _ in 0..30 {
+        r.renderer.render_frames(&r.ctx, 1, |_| {}).unwrap();
+        let now = srgb(&r.renderer, &r.ctx);
+        flips.push(mrshade_testkit::flip::mean(&previous, &now, SIZE, SIZE));
+        previous = now;
+    }
+    let mean = flips.iter().sum::<f32>() / flips.len() as f32;
+    eprintln!(
+        "frame-to-frame FLIP over the last 30 of 60 frames: mean {mean:.4}, max {:.4}",
+        flips.iter().fold(0.0f32, |a, &b| a.max(b))
+    );
+    assert!(mean < 0.01, "flicker: mean frame-to-frame FLIP {mean}");
+}
+
+/// A virtual cube moved by 1 cm per frame for 30 frames ends up like a cube rendered at its
+/// final place from the start: nothing of its old shadows stays behind on the floor.
+#[test]
+fn a_moving_virtual_object_leaves_no_trail() {
+    let (start, end) = (-0.2f32, 0.1f32);
+    let (_dir, session) = scene(start, 24).session();
+    let cube = session.scene.instances.iter().position(|i| i.realness == Realness::Virtual).unwrap();
+    let mut moving = Rendered::new(session);
+    for step in 1..=30 {
+        let at = moving.renderer.instance_transform(cube);
+        moving.renderer.set_instance_transform(cube, Mat4::from_translation(Vec3::new(0.01, 0.0, 0.0)) * at);
+        moving.renderer.render_frames(&moving.ctx, 1, |_| {}).unwrap();
+        if step == 30 {
+            assert!((moving.renderer.instance_transform(cube).w_axis.x - end).abs() < 1e-4);
+        }
+    }
+    let (_dir2, session) = scene(end, 54).session();
+    let fixed = Rendered::new(session);
+    // The floor where the cube stood and cast its shadows before it moved (left of it).
+    let (a, b) = (srgb(&moving.renderer, &moving.ctx), srgb(&fixed.renderer, &fixed.ctx));
+    let mut worst = 0.0f32;
+    let mut sum = 0.0f32;
+    let mut count = 0;
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let p = moving.world_on_plane(x, y, 0.0);
+            if p.x > start - 0.15 && p.x < end - 0.1 && p.z.abs() < 0.15 {
+                let i = ((y * SIZE + x) * 3) as usize;
+                let la = (a[i] as f32 + a[i + 1] as f32 + a[i + 2] as f32) / 3.0;
+                let lb = (b[i] as f32 + b[i + 1] as f32 + b[i + 2] as f32) / 3.0;
+                worst = worst.max((la - lb).abs());
+                sum += la - lb;
+                count += 1;
+            }
+        }
+    }
+    let mean = sum / count as f32;
+    eprintln!("trail region ({count} pixels): mean difference {mean:.2}/255, worst {worst:.1}/255");
+    assert!(mean.abs() < 1.0 && worst < 6.0, "a trail: mean {mean:.2}/255, worst {worst:.1}/255");
+}
+
+/// Inside a closed sphere of albedo ρ = 0.5 with a point light of intensity I at its centre,
+/// every point receives the direct radiance ρ I / (π R²) and, over all bounces, a total of
+/// that times 1 / (1 − ρ) = 2 (the sphere's interreflection series). The multiple-bounce
+/// source must carry the light to that limit.
+#[test]
+fn multiple_bounces_reach_the_closed_form_in_a_sphere() {
+    let mut s = Setup::top_down(32);
+    s.gltf = mrshade_testkit::gltf::GltfBuilder::new();
+    s.gltf.camera_node("camera", 1.0, None, [0.0, 0.0, 0.5], mrshade_testkit::gltf::quat([0.0, 1.0, 0.0], 0.0));
+    s.top_toml = "method = \"dir\"\n".into();
+    s.extra_toml = "[output]\nframes = 24\n".into();
+    let m = s.gltf.material(json!({"name": "inside", "doubleSided": true,
+        "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}));
+    let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(1.0, 48), Some(m), true);
+    s.gltf.node(json!({"name": "room", "mesh": mesh, "extras": {"real": true}}));
+    let light = s.gltf.light(json!({"type": "point", "intensity": 1.0}));
+    s.gltf.node(
+        json!({"name": "lamp", "extensions": {"KHR_lights_punctual": {"light": light}}, "extras": {"real": true}}),
+    );
+    let r = s.render();
+    let direct = 0.5 / std::f32::consts::PI;
+    let mut sum = 0.0;
+    for y in 8..24 {
+        for x in 8..24 {
+            sum += r.l_rv(x, y).x;
+        }
+    }
+    let mean = sum / 256.0;
+    eprintln!("L_rv {mean:.4}, closed form {:.4} (direct {direct:.4})", 2.0 * direct);
+    assert!((mean / (2.0 * direct) - 1.0).abs() < 0.05, "L_rv {mean} vs {}", 2.0 * direct);
+}
