@@ -33,6 +33,25 @@ struct Surface {
     occlusion: f32,
 }
 
+// The surface a G-buffer pixel stores at world position `p`, seen from `eye`: the texels of
+// its albedo/metallic, normal/roughness and specular (F0, F90) targets. No emission or
+// transmission, full occlusion: passes that use them set them.
+fn gbuffer_surface(p: vec3f, eye: vec3f, albedo_metallic: vec4f, normal_roughness: vec4f, specular: vec4f) -> Surface {
+    var s: Surface;
+    s.position = p;
+    s.normal = normalize(normal_roughness.xyz);
+    s.view = normalize(eye - p);
+    s.base_color = albedo_metallic.rgb;
+    s.metallic = albedo_metallic.a;
+    s.roughness = normal_roughness.a;
+    s.dielectric_f0 = specular.rgb;
+    s.dielectric_f90 = specular.a;
+    s.transmission = 0.0;
+    s.emission = vec3f(0.0);
+    s.occlusion = 1.0;
+    return s;
+}
+
 fn surface_f0(s: Surface) -> vec3f { return mix(s.dielectric_f0, s.base_color, s.metallic); }
 fn surface_f90(s: Surface) -> f32 { return mix(s.dielectric_f90, 1.0, s.metallic); }
 

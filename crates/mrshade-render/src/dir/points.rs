@@ -126,8 +126,8 @@ mod tests {
     use glam::Mat4;
     use mrshade_scene::{Instance, Primitive};
 
-    fn scene() -> Scene {
-        // Two unit quads in the XZ plane: a real one at the origin, a virtual one 3× larger.
+    /// A unit quad in the XZ plane at the origin, as a real instance.
+    pub(super) fn unit_quad() -> Scene {
         let quad = Primitive {
             name: "quad".into(),
             positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 1.0), Vec3::Z],
@@ -143,6 +143,12 @@ mod tests {
             world_from_object: Mat4::IDENTITY,
             realness: Realness::Real,
         });
+        s
+    }
+
+    fn scene() -> Scene {
+        // Two unit quads in the XZ plane: a real one at the origin, a virtual one 3× larger.
+        let mut s = unit_quad();
         s.instances.push(Instance {
             node_name: "virtual".into(),
             primitive: 0,
@@ -181,26 +187,10 @@ mod tests {
 #[cfg(test)]
 mod stratification {
     use super::*;
-    use glam::Mat4;
-    use mrshade_scene::{Instance, Primitive};
 
     #[test]
     fn every_block_covers_a_quad_evenly() {
-        let quad = Primitive {
-            name: "quad".into(),
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 1.0), Vec3::Z],
-            normals: vec![Vec3::Y; 4],
-            uvs: vec![Vec2::ZERO; 4],
-            indices: vec![0, 2, 1, 0, 3, 2],
-            material: 0,
-        };
-        let mut s = Scene { primitives: vec![quad], ..Default::default() };
-        s.instances.push(Instance {
-            node_name: "q".into(),
-            primitive: 0,
-            world_from_object: Mat4::IDENTITY,
-            realness: Realness::Real,
-        });
+        let s = super::tests::unit_quad();
         let cloud = PointCloud::new(&s, Realness::Real, 256 * 3, 256);
         // Each block of 256 points puts 16 ± 6 points into each of the 16 cells of a 4×4 grid
         // (independent random points would vary far more, down to a few).

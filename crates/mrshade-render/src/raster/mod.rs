@@ -37,7 +37,7 @@ const BIG_TILE_STRIDE: u32 = 64;
 /// Big-triangle records per view; beyond that, triangles are drawn by their own thread.
 const BIG_CAPACITY: u32 = 16384;
 /// Size of one `BigTriangle` in raster.wgsl.
-const BIG_RECORD_BYTES: u64 = 80;
+pub(crate) const BIG_RECORD_BYTES: u64 = 80;
 
 /// One rasterised view: its constants and its visibility target.
 pub struct RasterView {
@@ -223,4 +223,9 @@ impl Rasterizer {
 }
 
 /// The composed WGSL module.
-pub const SHADER: &str = wgsl!("../../shaders/lib/gbuffer.wgsl", "../../shaders/lib/instance.wgsl", "raster.wgsl",);
+pub const SHADER: &str = wgsl!(
+    "../../shaders/lib/gbuffer.wgsl",
+    "../../shaders/lib/instance.wgsl",
+    "../../shaders/lib/raster_common.wgsl",
+    "raster.wgsl",
+);

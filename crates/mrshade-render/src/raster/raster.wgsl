@@ -18,16 +18,6 @@ struct RasterView {
     params: vec4f,
 }
 
-struct BigTriangle {
-    a: vec4f,
-    b: vec4f,
-    c: vec4f,
-    // min x, min y, max x, max y (inclusive pixels)
-    bbox: vec4u,
-    // payload, unused…
-    payload: vec4u,
-}
-
 @group(0) @binding(0) var<uniform> view: RasterView;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
 @group(0) @binding(2) var<storage, read> vertices: array<f32>;
@@ -41,41 +31,20 @@ struct BigTriangle {
 
 const FILTER_REAL: u32 = 1u;
 const FILTER_VIRTUAL: u32 = 2u;
-const TILE: u32 = 16u;
-
-fn edge(a: vec2f, b: vec2f, p: vec2f) -> f32 {
-    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-}
 
 fn write_texel(x: u32, y: u32, a: vec3f, b: vec3f, c: vec3f, inv_area: f32, payload: u32) {
-    let p = vec2f(f32(x) + 0.5, f32(y) + 0.5);
-    let w0 = edge(b.xy, c.xy, p) * inv_area;
-    let w1 = edge(c.xy, a.xy, p) * inv_area;
-    let w2 = edge(a.xy, b.xy, p) * inv_area;
-    // Inclusive edges (with a hair of tolerance): shared edges may be covered twice, which
-    // the depth test resolves, but never left open.
-    if (min(w0, min(w1, w2)) < -1e-6) { return; }
-    let z = w0 * a.z + w1 * b.z + w2 * c.z;
+    let w = texel_weights(x, y, a, b, c, inv_area);
+    if (!covers(w)) { return; }
+    let z = w.x * a.z + w.y * b.z + w.z * c.z;
     if (z <= 0.0 || z > 1.0) { return; }
     let packed = (u64(bitcast<u32>(z)) << 32u) | u64(payload);
     atomicMax(&target_texels[y * view.size.x + x], packed);
 }
 
-fn bbox_of(a: vec3f, b: vec3f, c: vec3f) -> vec4i {
-    let lo = min(a.xy, min(b.xy, c.xy));
-    let hi = max(a.xy, max(b.xy, c.xy));
-    // Pixels whose centres (i + 0.5) fall inside [lo, hi].
-    let x0 = max(i32(ceil(lo.x - 0.5)), 0);
-    let y0 = max(i32(ceil(lo.y - 0.5)), 0);
-    let x1 = min(i32(floor(hi.x - 0.5)), i32(view.size.x) - 1);
-    let y1 = min(i32(floor(hi.y - 0.5)), i32(view.size.y) - 1);
-    return vec4i(x0, y0, x1, y1);
-}
-
 fn raster_screen_triangle(a: vec3f, b: vec3f, c: vec3f, payload: u32) {
     let area = edge(a.xy, b.xy, c.xy);
     if (abs(area) < 1e-12) { return; }
-    let bb = bbox_of(a, b, c);
+    let bb = texel_bbox(a, b, c, vec2i(view.size.xy) - 1);
     if (bb.x > bb.z || bb.y > bb.w) { return; }
     let count = u32(bb.z - bb.x + 1) * u32(bb.w - bb.y + 1);
     if (count > view.limits.y) {
@@ -99,10 +68,6 @@ fn to_screen(h: vec4f) -> vec3f {
     let ndc = h.xyz / h.w;
     let size = vec2f(view.size.xy);
     return vec3f((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, clamp(ndc.z, 0.0, 1.0));
-}
-
-fn vertex_position(index: u32) -> vec3f {
-    return vec3f(vertices[index * 8u], vertices[index * 8u + 1u], vertices[index * 8u + 2u]);
 }
 
 @compute @workgroup_size(64)
@@ -151,14 +116,12 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) 
 fn cs_big(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u) {
     let t = big[wg.x];
     let bb = vec4i(t.bbox);
-    let tiles_x = (u32(bb.z - bb.x) + TILE) / TILE;
-    let tiles_y = (u32(bb.w - bb.y) + TILE) / TILE;
+    let tiles = big_tiles(bb);
     let inv_area = 1.0 / edge(t.a.xy, t.b.xy, t.c.xy);
-    for (var tile = wg.y; tile < tiles_x * tiles_y; tile += view.limits.z) {
-        let x = bb.x + i32((tile % tiles_x) * TILE + lid.x);
-        let y = bb.y + i32((tile / tiles_x) * TILE + lid.y);
-        if (x <= bb.z && y <= bb.w) {
-            write_texel(u32(x), u32(y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area, t.payload.x);
+    for (var tile = wg.y; tile < tiles.x * tiles.y; tile += view.limits.z) {
+        let p = big_texel(bb, tiles, tile, lid.xy);
+        if (p.x <= bb.z && p.y <= bb.w) {
+            write_texel(u32(p.x), u32(p.y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area, t.payload.x);
         }
     }
 }

@@ -110,8 +110,8 @@ impl Rendered {
         Self { ctx, session, renderer, radiance }
     }
 
-    /// Where the centre of internal pixel (x, y) hits the plane y = `height`.
-    pub fn world_on_plane(&self, x: u32, y: u32, height: f32) -> Vec3 {
+    /// Two points (at NDC depths 1 and 0.5) on the camera ray through internal pixel (x, y)'s centre.
+    fn pixel_ray(&self, x: u32, y: u32) -> (Vec3, Vec3) {
         let u = FrameUniforms::new(&self.session, 0, 1);
         let (w, h) = u.internal_size();
         let ndc = |depth: f32| {
@@ -124,26 +124,19 @@ impl Rendered {
                 );
             p.truncate() / p.w
         };
-        let (a, b) = (ndc(1.0), ndc(0.5));
+        (ndc(1.0), ndc(0.5))
+    }
+
+    /// Where the centre of internal pixel (x, y) hits the plane y = `height`.
+    pub fn world_on_plane(&self, x: u32, y: u32, height: f32) -> Vec3 {
+        let (a, b) = self.pixel_ray(x, y);
         let t = (height - a.y) / (b.y - a.y);
         a + (b - a) * t
     }
 
     /// Where the centre of internal pixel (x, y) hits the plane x = `at`.
     pub fn world_on_plane_x(&self, x: u32, y: u32, at: f32) -> Vec3 {
-        let u = FrameUniforms::new(&self.session, 0, 1);
-        let (w, h) = u.internal_size();
-        let ndc = |depth: f32| {
-            let p = u.world_from_clip
-                * Vec4::new(
-                    (x as f32 + 0.5) / w as f32 * 2.0 - 1.0,
-                    1.0 - (y as f32 + 0.5) / h as f32 * 2.0,
-                    depth,
-                    1.0,
-                );
-            p.truncate() / p.w
-        };
-        let (a, b) = (ndc(1.0), ndc(0.5));
+        let (a, b) = self.pixel_ray(x, y);
         let t = (at - a.x) / (b.x - a.x);
         a + (b - a) * t
     }

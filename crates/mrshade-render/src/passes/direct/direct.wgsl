@@ -35,22 +35,16 @@
 @group(3) @binding(1) var out_l_r: texture_storage_2d<rgba16float, write>;
 
 fn load_surface(pixel: vec2i, p: vec3f) -> Surface {
-    let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
-    let nr = textureLoad(gbuffer_normal_roughness, pixel, 0);
-    let sp = textureLoad(gbuffer_specular, pixel, 0);
     let eo = textureLoad(gbuffer_emission_occlusion, pixel, 0);
-    var s: Surface;
-    s.position = p;
-    s.normal = normalize(nr.xyz);
-    s.view = normalize(frame.camera_position.xyz - p);
-    s.base_color = am.rgb;
-    s.metallic = am.a;
-    s.roughness = nr.a;
-    s.dielectric_f0 = sp.rgb;
-    s.dielectric_f90 = sp.a;
+    var s = gbuffer_surface(
+        p,
+        frame.camera_position.xyz,
+        textureLoad(gbuffer_albedo_metallic, pixel, 0),
+        textureLoad(gbuffer_normal_roughness, pixel, 0),
+        textureLoad(gbuffer_specular, pixel, 0),
+    );
     s.emission = eo.rgb;
     s.occlusion = eo.a;
-    s.transmission = 0.0;
     return s;
 }
 

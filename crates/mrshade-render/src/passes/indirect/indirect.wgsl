@@ -89,21 +89,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let p = world_from_pixel(frame, vec2f(id.xy) + 0.5, textureLoad(gbuffer_depth_motion, pixel, 0).x);
-    let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
-    let nr = textureLoad(gbuffer_normal_roughness, pixel, 0);
-    let sp = textureLoad(gbuffer_specular, pixel, 0);
-    var s: Surface;
-    s.position = p;
-    s.normal = normalize(nr.xyz);
-    s.view = normalize(frame.camera_position.xyz - p);
-    s.base_color = am.rgb;
-    s.metallic = am.a;
-    s.roughness = nr.a;
-    s.dielectric_f0 = sp.rgb;
-    s.dielectric_f90 = sp.a;
+    var s = gbuffer_surface(
+        p,
+        frame.camera_position.xyz,
+        textureLoad(gbuffer_albedo_metallic, pixel, 0),
+        textureLoad(gbuffer_normal_roughness, pixel, 0),
+        textureLoad(gbuffer_specular, pixel, 0),
+    );
     s.transmission = materials[material_of(flags)].transmission.x;
-    s.emission = vec3f(0.0);
-    s.occlusion = 1.0;
     let r_p = r_of(flags);
     let receiver_real = is_real(flags);
 

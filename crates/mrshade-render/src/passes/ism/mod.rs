@@ -210,7 +210,7 @@ impl IsmPass {
         let big = [0, 1].map(|a| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("ism/raster_big{a}")),
-                size: BIG_CAPACITY * 80,
+                size: BIG_CAPACITY * crate::raster::BIG_RECORD_BYTES,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             })
@@ -310,6 +310,7 @@ pub const RASTER_SHADER: &str = wgsl!(
     "../../../shaders/lib/sampling.wgsl",
     "../../../shaders/lib/vpl.wgsl",
     "../../../shaders/lib/ism.wgsl",
+    "../../../shaders/lib/raster_common.wgsl",
     "raster.wgsl",
 );
 

@@ -11,16 +11,6 @@ struct RasterParams {
     info: vec4u,
 }
 
-struct BigTriangle {
-    a: vec4f,
-    b: vec4f,
-    c: vec4f,
-    // min x, min y, max x, max y (inclusive texels of the tile)
-    bbox: vec4u,
-    // VPL index, unused…
-    vpl: vec4u,
-}
-
 @group(0) @binding(0) var<uniform> ism: IsmParams;
 @group(0) @binding(1) var<uniform> params: RasterParams;
 @group(0) @binding(2) var<storage, read> instances: array<Instance>;
@@ -33,27 +23,15 @@ struct BigTriangle {
 @group(1) @binding(0) var<storage, read_write> big_args: array<atomic<u32>, 3>;
 
 const SMALL: u32 = 256u;
-const TILE: u32 = 16u;
-
-fn edge(a: vec2f, b: vec2f, p: vec2f) -> f32 {
-    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-}
 
 fn write_texel(vpl: u32, x: u32, y: u32, a: vec3f, b: vec3f, c: vec3f, inv_area: f32) {
-    let p = vec2f(f32(x) + 0.5, f32(y) + 0.5);
-    let w0 = edge(b.xy, c.xy, p) * inv_area;
-    let w1 = edge(c.xy, a.xy, p) * inv_area;
-    let w2 = edge(a.xy, b.xy, p) * inv_area;
-    if (min(w0, min(w1, w2)) < -1e-6) { return; }
-    let depth = max(w0 * a.z + w1 * b.z + w2 * c.z, 0.0);
+    let w = texel_weights(x, y, a, b, c, inv_area);
+    if (!covers(w)) { return; }
+    let depth = max(w.x * a.z + w.y * b.z + w.z * c.z, 0.0);
     let res = ism.tile.x;
     let tile = vec2u(vpl % ism.tile.y, vpl / ism.tile.y);
     let i = (tile.y * res + y) * (ism.tile.y * res) + tile.x * res + x;
     atomicMax(&atlas[i], ism_encode(depth));
-}
-
-fn vertex_position(index: u32) -> vec3f {
-    return vec3f(vertices[index * 8u], vertices[index * 8u + 1u], vertices[index * 8u + 2u]);
 }
 
 @compute @workgroup_size(64)
@@ -76,10 +54,7 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u) {
     }
     let area = edge(s[0].xy, s[1].xy, s[2].xy);
     if (abs(area) < 1e-12) { return; }
-    let lo = min(s[0].xy, min(s[1].xy, s[2].xy));
-    let hi = max(s[0].xy, max(s[1].xy, s[2].xy));
-    let last = i32(ism.tile.x) - 1;
-    let bb = vec4i(max(i32(ceil(lo.x - 0.5)), 0), max(i32(ceil(lo.y - 0.5)), 0), min(i32(floor(hi.x - 0.5)), last), min(i32(floor(hi.y - 0.5)), last));
+    let bb = texel_bbox(s[0], s[1], s[2], vec2i(i32(ism.tile.x) - 1));
     if (bb.x > bb.z || bb.y > bb.w) { return; }
     if (u32(bb.z - bb.x + 1) * u32(bb.w - bb.y + 1) > SMALL) {
         let slot = atomicAdd(&big_args[0], 1u);
@@ -101,14 +76,12 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u) {
 fn cs_big(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u) {
     let t = big[wg.x];
     let bb = vec4i(t.bbox);
-    let tiles_x = (u32(bb.z - bb.x) + TILE) / TILE;
-    let tiles_y = (u32(bb.w - bb.y) + TILE) / TILE;
+    let tiles = big_tiles(bb);
     let inv_area = 1.0 / edge(t.a.xy, t.b.xy, t.c.xy);
-    for (var tile = wg.y; tile < tiles_x * tiles_y; tile += params.info.w) {
-        let x = bb.x + i32((tile % tiles_x) * TILE + lid.x);
-        let y = bb.y + i32((tile / tiles_x) * TILE + lid.y);
-        if (x <= bb.z && y <= bb.w) {
-            write_texel(t.vpl.x, u32(x), u32(y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area);
+    for (var tile = wg.y; tile < tiles.x * tiles.y; tile += params.info.w) {
+        let p = big_texel(bb, tiles, tile, lid.xy);
+        if (p.x <= bb.z && p.y <= bb.w) {
+            write_texel(t.payload.x, u32(p.x), u32(p.y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area);
         }
     }
 }
