@@ -186,6 +186,12 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
 
     let scene = load_gltf(&folder, &file.scene).with_context(|| field("scene"))?;
     let camera = pick_camera(&scene, file.camera.as_deref()).with_context(|| field("camera"))?;
+    // A weight for a source that does not exist (a misspelt light name) would be ignored.
+    let sources: Vec<&str> =
+        scene.lights.iter().map(|l| l.name.as_str()).chain(["environment", "environment_bounce", "bounce"]).collect();
+    if let Some(name) = settings.dir.weights.keys().find(|k| !sources.contains(&k.as_str())) {
+        bail!("{}: no light or VPL source is named '{name}' (known: {})", field("dir.weights"), sources.join(", "));
+    }
 
     let photo = images::decode_photo(&folder.read(&file.background).with_context(|| field("background"))?)
         .with_context(|| format!("{}: {}", field("background"), folder.display(&file.background)))?;

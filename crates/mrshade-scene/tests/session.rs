@@ -72,6 +72,15 @@ fn unknown_keys_are_errors() {
 }
 
 #[test]
+fn a_weight_for_an_unknown_source_is_an_error() {
+    let (_dir, path) = session_dir(Some(4.0 / 3.0), (32, 24));
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, text + "\n[dir]\ndistribution = \"weighted\"\nweights = { lamp-typo = 2.0 }\n").unwrap();
+    let msg = error(&path, &SessionOverrides::default());
+    assert!(msg.contains("dir.weights") && msg.contains("lamp-typo") && msg.contains("environment"), "{msg}");
+}
+
+#[test]
 fn wrong_types_name_the_key() {
     let (_dir, path) = session_dir(Some(4.0 / 3.0), (32, 24));
     edit(&path, "exposure = 1.5", "exposure = \"bright\"");

@@ -82,7 +82,8 @@ pub struct DirSettings {
     pub rsm_resolution: u32,
     /// How VPL slots are shared among the sources.
     pub distribution: Distribution,
-    /// Source weights for `distribution = "weighted"`: light names, "environment", "bounce".
+    /// Source weights for `distribution = "weighted"`: light names, "environment",
+    /// "environment_bounce", "bounce" (any other name is an error); unlisted sources weigh 1.
     pub weights: BTreeMap<String, f32>,
     /// The multiple-bounce method.
     pub bounce: BounceMethod,
@@ -216,6 +217,8 @@ mod tests {
     fn bad_values_name_their_field() {
         let d = DirSettings { ism_resolution: 100, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.ism_resolution"));
+        let d = DirSettings { rsm_resolution: 2, ..Default::default() };
+        assert!(d.validate().unwrap_err().contains("dir.rsm_resolution"));
         let d = DirSettings { vpl_count: 8, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.vpl_count"));
         let mut d = DirSettings::default();
