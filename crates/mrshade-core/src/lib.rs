@@ -2,7 +2,7 @@
 //!
 //! No I/O and no GPU here: colour transfer functions, the HDR image type, the
 //! `Differential { rv, r }` pair of differential rendering, surface flags, projection and
-//! environment-map conventions, CPU BRDF math and the typed render settings with the spec's
+//! environment-map conventions, CPU BRDF math, the benchmark's changed region and the typed render settings with the spec's
 //! defaults.
 
 pub mod brdf;
@@ -11,6 +11,7 @@ pub mod differential;
 pub mod flags;
 pub mod image;
 pub mod math;
+pub mod region;
 pub mod settings;
 
 pub use differential::Differential;

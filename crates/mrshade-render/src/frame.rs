@@ -20,7 +20,7 @@ impl Renderer {
         // Indirect light first (RSMs → VPLs → ISMs → interleaved shading → temporal smoothing
         // and merge), then direct light on top of it (Knecht §1.4, steps 5–9).
         if let (Method::Dir, Some(dir)) = (&self.settings.method, &mut self.dir) {
-            dir.record(rec, &self.rasterizer, &self.gbuffer);
+            dir.record(rec, &self.rasterizer);
         }
         self.direct.record(rec);
         // 4. Differential composite with the photo.

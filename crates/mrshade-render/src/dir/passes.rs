@@ -87,13 +87,13 @@ impl DirPasses {
     }
 
     /// Records the method's passes for the current frame and advances the frame counter.
-    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer, gbuffer: &GBuffer) {
+    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         let parity = (self.frame % 2) as usize;
         self.rsm.record(rec, rasterizer);
         self.vpl.record(rec, parity);
         self.ism.record(rec, &self.ism_resources, parity);
         self.indirect.record(rec, parity);
-        self.filter.record(rec, gbuffer, parity);
+        self.filter.record(rec, parity);
         self.frame += 1;
     }
 

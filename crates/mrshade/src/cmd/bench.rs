@@ -49,6 +49,9 @@ struct Report {
     frame: Stats,
     /// Per pass label (several passes with one label, e.g. shadow layers, are summed per frame).
     passes: BTreeMap<String, Stats>,
+    /// Per pass label: GPU time between the end of everything recorded before it and its start
+    /// (barriers, buffer clears and copies between passes, the GPU draining and refilling).
+    gaps_before: BTreeMap<String, Stats>,
     /// Pass labels in frame order.
     pass_order: Vec<String>,
 }
@@ -96,8 +99,20 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
 
     let mut pass_order: Vec<String> = Vec::new();
     let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let mut per_gap: BTreeMap<String, Vec<f64>> = BTreeMap::new();
     let mut frame_ms = Vec::new();
     for f in &frames {
+        let mut gaps: BTreeMap<&str, f64> = BTreeMap::new();
+        let mut ordered: Vec<&(String, f64, f64)> = f.iter().collect();
+        ordered.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let mut busy_until = ordered.first().map_or(0.0, |p| p.1);
+        for (label, s, e) in ordered {
+            *gaps.entry(label).or_default() += (s - busy_until).max(0.0) * 1e3;
+            busy_until = busy_until.max(*e);
+        }
+        for (label, ms) in gaps {
+            per_gap.entry(label.to_string()).or_default().push(ms);
+        }
         let start = f.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
         let end = f.iter().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
         frame_ms.push((end - start) * 1e3);
@@ -126,6 +141,7 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         warmup: args.warmup,
         frame: Stats::of(&frame_ms),
         passes: per_pass.iter().map(|(k, v)| (k.clone(), Stats::of(v))).collect(),
+        gaps_before: per_gap.iter().map(|(k, v)| (k.clone(), Stats::of(v))).collect(),
         pass_order,
     };
     print_report(&report);
@@ -139,10 +155,11 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
 
 fn print_report(r: &Report) {
     println!("{} on {} ({}), {}×{}, {} frames", r.method, r.adapter, r.backend, r.width, r.height, r.frames);
-    println!("{:<12} {:>10} {:>10}", "pass", "mean ms", "p95 ms");
+    println!("{:<12} {:>10} {:>10} {:>10}", "pass", "mean ms", "p95 ms", "gap ms");
     for label in &r.pass_order {
         let s = &r.passes[label];
-        println!("{label:<12} {:>10.3} {:>10.3}", s.mean_ms, s.p95_ms);
+        let gap = r.gaps_before.get(label).map_or(0.0, |g| g.mean_ms);
+        println!("{label:<12} {:>10.3} {:>10.3} {gap:>10.3}", s.mean_ms, s.p95_ms);
     }
     println!("{:<12} {:>10.3} {:>10.3}", "frame", r.frame.mean_ms, r.frame.p95_ms);
 }

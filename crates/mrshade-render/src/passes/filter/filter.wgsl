@@ -11,6 +11,9 @@ struct FilterParams {
 @group(0) @binding(1) var<uniform> params: FilterParams;
 @group(0) @binding(2) var gbuffer_depth_motion: texture_2d<f32>;
 @group(0) @binding(3) var gbuffer_normal_roughness: texture_2d<f32>;
+// This frame's depth and normals, kept for the next frame's temporal step.
+@group(0) @binding(4) var keep_depth_motion: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(5) var keep_normal_roughness: texture_storage_2d<rgba16float, write>;
 
 @group(1) @binding(0) var in_rv: texture_2d<f32>;
 @group(1) @binding(1) var in_r: texture_2d<f32>;
@@ -24,14 +27,17 @@ struct FilterParams {
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (any(id.xy >= frame.size.xy)) { return; }
     let pixel = vec2i(id.xy);
-    let depth = textureLoad(gbuffer_depth_motion, pixel, 0).x;
+    let depth_motion = textureLoad(gbuffer_depth_motion, pixel, 0);
+    let depth = depth_motion.x;
+    let n = textureLoad(gbuffer_normal_roughness, pixel, 0);
+    textureStore(keep_depth_motion, pixel, depth_motion);
+    textureStore(keep_normal_roughness, pixel, n);
     if (depth == 0.0 || params.info.y == 0u) {
         textureStore(out_rv, pixel, textureLoad(in_rv, pixel, 0));
         textureStore(out_r, pixel, textureLoad(in_r, pixel, 0));
         textureStore(out_env, pixel, textureLoad(in_env, pixel, 0));
         return;
     }
-    let n = textureLoad(gbuffer_normal_roughness, pixel, 0).xyz;
     let size = i32(params.info.x);
     let lo = -size / 2;
     var rv = vec4f(0.0);
@@ -47,7 +53,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             // is the relative difference of distances.
             let w_depth = max(0.0, 1.0 - abs(dq - depth) / (0.03 * depth));
             let nq = textureLoad(gbuffer_normal_roughness, q, 0).xyz;
-            let w_normal = pow(max(dot(n, nq), 0.0), 8.0);
+            let w_normal = pow(max(dot(n.xyz, nq), 0.0), 8.0);
             let w = w_depth * w_normal;
             if (w <= 0.0) { continue; }
             rv += w * textureLoad(in_rv, q, 0);

@@ -1,15 +1,49 @@
 // VPL distribution across the primary light sources (Knecht §2.8): equal shares, user
-// weights, or the shares of each source's summed VPL flux in the previous frame.
+// weights, or the shares of each source's summed VPL flux in the previous frame; and the
+// cumulative flux of the previous frame's surface VPLs, from which the multiple-bounce source
+// picks its sources (generate.wgsl, by binary search).
 
 @group(0) @binding(0) var<uniform> params: VplParams;
 @group(0) @binding(1) var<storage, read> sources: array<Source>;
 @group(0) @binding(2) var<storage, read> previous: array<Vpl>;
 @group(0) @binding(3) var<storage, read_write> ranges: array<vec4u>;
+@group(0) @binding(4) var<storage, read_write> flux_cdf: array<f32>;
 
 const MAX_SOURCES: u32 = 64u;
+const THREADS: u32 = 256u;
+var<workgroup> chunk_sums: array<f32, THREADS>;
 
-@compute @workgroup_size(1)
-fn cs_main() {
+// Inclusive prefix sum of the surface flux: each thread sums a run of VPLs, the runs are
+// scanned (Hillis–Steele), then each thread writes its run.
+fn scan_surface_flux(lane: u32) {
+    let n = params.counts.x;
+    let run = (n + THREADS - 1u) / THREADS;
+    let first = min(lane * run, n);
+    let end = min(first + run, n);
+    var sum = 0.0;
+    for (var i = first; i < end; i++) { sum += surface_flux(previous[i], params.scene.w); }
+    chunk_sums[lane] = sum;
+    workgroupBarrier();
+    for (var offset = 1u; offset < THREADS; offset *= 2u) {
+        let add = select(0.0, chunk_sums[lane - offset], lane >= offset);
+        workgroupBarrier();
+        chunk_sums[lane] += add;
+        workgroupBarrier();
+    }
+    var acc = chunk_sums[lane] - sum;
+    for (var i = first; i < end; i++) {
+        acc += surface_flux(previous[i], params.scene.w);
+        flux_cdf[i] = acc;
+    }
+}
+
+@compute @workgroup_size(THREADS)
+fn cs_main(@builtin(local_invocation_index) lane: u32) {
+    scan_surface_flux(lane);
+    if (lane == 0u) { distribute(); }
+}
+
+fn distribute() {
     let n = params.counts.x;
     let count = min(params.counts.z, MAX_SOURCES);
     var share: array<f32, 64>;

@@ -70,6 +70,11 @@ fn vpl_flux(v: Vpl, scene_radius: f32) -> f32 {
     }
 }
 
+// Selection weight of a previous VPL as the multiple-bounce source's origin.
+fn surface_flux(v: Vpl, radius: f32) -> f32 {
+    return select(0.0, vpl_flux(v, radius), vpl_kind(v) == VPL_SURFACE);
+}
+
 // Slot range of every source: (start, count).
 fn source_of_slot(slot: u32, source_count: u32) -> u32 {
     for (var s = 0u; s < source_count; s++) {

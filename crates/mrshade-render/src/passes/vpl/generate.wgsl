@@ -22,6 +22,8 @@
 @group(0) @binding(9) var<storage, read> previous: array<Vpl>;
 @group(0) @binding(10) var<storage, read_write> vpls: array<Vpl>;
 @group(0) @binding(11) var<storage, read_write> bounce_slots: array<BounceSlot>;
+// Inclusive prefix sum of the previous frame's surface-VPL flux (allocate.wgsl).
+@group(0) @binding(12) var<storage, read> flux_cdf: array<f32>;
 
 fn rsm_level_offset(level: u32) -> u32 {
     var offset = 0u;
@@ -213,18 +215,17 @@ fn setup_bounce(slot: u32, seq: u32, count: u32) -> BounceSlot {
     var b: BounceSlot;
     let n = params.counts.x;
     let radius = params.scene.w;
-    var total = 0.0;
-    for (var i = 0u; i < n; i++) { total += surface_flux(previous[i], radius); }
+    let total = flux_cdf[n - 1u];
     if (total <= 0.0) { return b; }
+    // The first VPL whose cumulative flux exceeds the pick (it has flux > 0).
     let pick = halton(5u, seq) * total;
-    var acc = 0.0;
-    var chosen = 0u;
-    for (var i = 0u; i < n; i++) {
-        let f = surface_flux(previous[i], radius);
-        acc += f;
-        chosen = i;
-        if (f > 0.0 && pick < acc) { break; }
+    var lo = 0u;
+    var hi = n - 1u;
+    while (lo < hi) {
+        let mid = (lo + hi) / 2u;
+        if (flux_cdf[mid] > pick) { hi = mid; } else { lo = mid + 1u; }
     }
+    let chosen = lo;
     let v = previous[chosen];
     let selection = surface_flux(v, radius) / total;
     if (selection <= 0.0) { return b; }
@@ -254,10 +255,6 @@ fn setup_bounce(slot: u32, seq: u32, count: u32) -> BounceSlot {
     b.carry = vec4f(carry / (selection * f32(count)), selection);
     b.info = vec4u(v.info.x, chosen, vpl_kind(v), 0u);
     return b;
-}
-
-fn surface_flux(v: Vpl, radius: f32) -> f32 {
-    return select(0.0, vpl_flux(v, radius), vpl_kind(v) == VPL_SURFACE);
 }
 
 @compute @workgroup_size(64)

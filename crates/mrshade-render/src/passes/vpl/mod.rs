@@ -221,6 +221,7 @@ impl VplPass {
         let ranges = rw("vpl/ranges", sources.len() as u64 * 16);
         let bounce_slots = rw("vpl/bounce_slots", n as u64 * BOUNCE_SLOT_BYTES);
         let best = rw("vpl/bounce_best", n as u64 * 8);
+        let flux_cdf = rw("vpl/previous_flux_cdf", n as u64 * 4);
         let sphere_capacity =
             scene.geometry.realness.iter().filter(|r| **r == mrshade_core::flags::Realness::Virtual).count().max(1);
         let virtual_spheres = rw("vpl/virtual_spheres", sphere_capacity as u64 * 16);
@@ -248,8 +249,8 @@ impl VplPass {
                 .collect();
             bind::layout(device, label, &entries)
         };
-        let allocate_layout = layout("vpl/allocate_layout", 4, &[3], &[0]);
-        let generate_layout = layout("vpl/generate_layout", 12, &[10, 11], &[0]);
+        let allocate_layout = layout("vpl/allocate_layout", 5, &[3, 4], &[0]);
+        let generate_layout = layout("vpl/generate_layout", 13, &[10, 11], &[0]);
         let bounce_layout = layout("vpl/bounce_layout", 16, &[9, 10, 15], &[0, 11]);
         let groups = [0usize, 1].map(|parity| {
             let (current, previous) = (&vpls[parity], &vpls[1 - parity]);
@@ -263,6 +264,7 @@ impl VplPass {
                         sources_buffer.as_entire_binding(),
                         previous.as_entire_binding(),
                         ranges.as_entire_binding(),
+                        flux_cdf.as_entire_binding(),
                     ],
                 ),
                 bind::group(
@@ -282,6 +284,7 @@ impl VplPass {
                         previous.as_entire_binding(),
                         current.as_entire_binding(),
                         bounce_slots.as_entire_binding(),
+                        flux_cdf.as_entire_binding(),
                     ],
                 ),
                 bind::group(
@@ -370,8 +373,9 @@ impl VplPass {
                     let groups = self.point_count.div_ceil(64);
                     pass.dispatch_workgroups(groups.min(65535), groups.div_ceil(65535), 1);
                 }
+                // One workgroup per slot (bounce.wgsl: LANES threads share its sums).
                 pass.set_pipeline(&self.finalize);
-                pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
+                pass.dispatch_workgroups(n, 1, 1);
             }
         });
     }
