@@ -191,3 +191,42 @@ fn the_flag_rules_route_a_path_table_to_the_right_buffers() {
         assert_eq!(&out[..3], &row.5, "{}", row.0);
     }
 }
+
+/// The multiple-bounce source (§2.8) in the real-only world: a real lamp lights a real floor
+/// under a real ceiling, and a virtual box floats in between. Bounce rays from the floor that
+/// meet the box first become, half of them, a virtual VPL on the box (L_rv), the other half a
+/// VPL3 on the ceiling behind it (ir: L_r only), where the real-only path goes on; rays that
+/// miss the box reach the ceiling as ordinary real VPLs. (A VPL3 bounces on as ir, through
+/// the box, on real surfaces only.)
+#[test]
+fn a_bounce_ray_that_meets_virtual_geometry_first_goes_on_to_a_real_surface_as_a_vpl3() {
+    let (ceiling, box_half) = (1.0f32, 0.3f32);
+    let mut s = Setup::top_down(16);
+    s.top_toml = "method = \"dir\"\n".into();
+    s.extra_toml = "[output]\nframes = 3\n[dir]\nvpl_count = 256\n".into();
+    s.plane(2.0, 0.0, 0.5, true).plane(2.0, ceiling, 0.5, true).cube([0.0, 0.5, 0.0], box_half, false);
+    s.light(
+        json!({"type": "spot", "intensity": 2.0, "spot": {"innerConeAngle": 0.9, "outerConeAngle": 1.2}}),
+        [0.0, 0.1, 0.0],
+        true,
+    );
+    let r = s.render();
+    let vpls = r.renderer.read_vpls(&r.ctx).unwrap();
+    // Sources: the lamp (0), then the multiple-bounce source (1).
+    let bounce: Vec<&GpuVpl> = surface_vpls(&vpls).into_iter().filter(|v| v.info.y == 1).collect();
+    // The first bounce off the floor: lamp → floor → here.
+    let first: Vec<&GpuVpl> = bounce.iter().copied().filter(|v| v.info.w == 2).collect();
+    let on_box = |v: &GpuVpl| (v.position.truncate() - Vec3::new(0.0, 0.5, 0.0)).abs().max_element() <= box_half + 1e-3;
+    let on_ceiling = |v: &GpuVpl| (v.position.y - ceiling).abs() < 1e-3;
+    let virtual_hits = first.iter().filter(|v| on_box(v)).count();
+    let vpl3 = first.iter().filter(|v| on_ceiling(v) && v.info.x == REAL | IR | PATH_REAL).count();
+    let plain = first.iter().filter(|v| on_ceiling(v) && v.info.x == REAL | PATH_REAL).count();
+    assert!(first.iter().filter(|v| on_box(v)).all(|v| v.info.x == 0), "a VPL on the box is virtual, x̄ = 0");
+    for v in bounce.iter().filter(|v| v.info.x & IR != 0) {
+        assert!(!on_box(v) && v.info.x & REAL != 0, "a VPL3 lies on a real surface: {v:?}");
+    }
+    assert!(virtual_hits >= 5 && vpl3 >= 5 && plain >= 5, "box {virtual_hits}, VPL3 {vpl3}, ceiling {plain}");
+    // Each blocked ray chooses one of its two VPLs with probability ½.
+    let share = vpl3 as f32 / (vpl3 + virtual_hits) as f32;
+    assert!((0.25..=0.75).contains(&share), "VPL3 share of the blocked rays {share}");
+}

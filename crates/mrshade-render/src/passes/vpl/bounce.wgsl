@@ -3,7 +3,12 @@
 // - importance (DIR v2, default): a candidate is valid when it lies within the cone of
 //   half-angle `bounce_cone_deg` around the slot's direction ω_o (a tube of that angular size
 //   for parallel sources); the nearest valid candidate wins (atomicMax on inverted distance | id),
-//   standing in for the ray's first hit. No shadow test, as in the thesis.
+//   standing in for the ray's first hit. No shadow test, as in the thesis. Where the first hit
+//   is virtual and the path is real, the ray in the real-only world goes on to the nearest
+//   real candidate: that point gets a VPL3 (ir), which lights L_r only, as the VPL3s of the
+//   primary lights do (§2.5). A slot holds one VPL, so it keeps one of the two, each with
+//   probability ½ and twice the power (the first-hit VPL without it would leave L_r missing
+//   the real bounce the photo shows, and real surfaces too bright around virtual objects).
 // - fitness (DIR v1): the candidate receiving the most light from the source VPL (glossy
 //   bounce with the previous frame's ISM visibility) wins (atomicMax on fitness | id).
 // cs_candidates evaluates the candidates, cs_finalize turns each winner into a VPL, and each
@@ -18,6 +23,7 @@
 @group(0) @binding(6) var<storage, read> points_virtual: array<Point>;
 @group(0) @binding(7) var<storage, read> previous: array<Vpl>;
 @group(0) @binding(8) var<storage, read> bounce_slots: array<BounceSlot>;
+// [slot]: the winning candidate (key << 32 | point); [slots + slot]: the nearest real one.
 @group(0) @binding(9) var<storage, read_write> best: array<atomic<u64>>;
 @group(0) @binding(10) var<storage, read_write> vpls: array<Vpl>;
 @group(0) @binding(11) var<uniform> ism: IsmParams;
@@ -161,7 +167,9 @@ fn cs_candidates(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgro
     }
     if (dot(to / dist, b.direction.xyz) < params.bounce.x) { return; }
     // Nearest first: the key grows as the distance shrinks.
-    atomicMax(&best[slot], (u64(0xffffffffu - bitcast<u32>(dist)) << 32u) | u64(global));
+    let key = (u64(0xffffffffu - bitcast<u32>(dist)) << 32u) | u64(global);
+    atomicMax(&best[slot], key);
+    if (p.real) { atomicMax(&best[params.counts.x + slot], key); }
 }
 
 // One workgroup per slot.
@@ -176,9 +184,20 @@ fn cs_finalize(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_in
         return;
     }
     if (lane != 0u) { return; }
-    let packed = atomicLoad(&best[slot]);
+    var packed = atomicLoad(&best[slot]);
     if (b.origin.w != SLOT_RAY || packed == u64(0u)) { return; }
-    let p = world_point(u32(packed & u64(0xffffffffu)));
+    var p = world_point(u32(packed & u64(0xffffffffu)));
+    var split = 1.0;
+    var real_only = false;
+    let behind = atomicLoad(&best[params.counts.x + slot]);
+    if (params.modes.y == 1u && !p.real && (b.info.x & VPL_PATH_REAL) != 0u && behind != u64(0u)) {
+        split = 2.0;
+        if (hash_u32(slot ^ (params.counts.y * 0x85ebca6bu)) % 2u == 1u) {
+            real_only = true;
+            packed = behind;
+            p = world_point(u32(packed & u64(0xffffffffu)));
+        }
+    }
     let m = materials[p.material];
     let incoming = normalize(b.origin.xyz - p.position);
     var v: Vpl;
@@ -188,7 +207,7 @@ fn cs_finalize(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_in
     v.position = vec4f(p.position, d2 / (cos_hit * max(b.direction.w, 1e-8)));
     let n = select(-p.normal, p.normal, dot(p.normal, incoming) >= 0.0);
     v.normal = vec4f(n, m.params.y);
-    var power = b.carry.rgb;
+    var power = b.carry.rgb * split;
     if (params.modes.y == 2u) {
         // DIR v1 has no sampling density: the winner stands for its share of the surfaces.
         let source = previous[b.info.y];
@@ -206,6 +225,7 @@ fn cs_finalize(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_in
     v.incoming = vec4f(incoming, (m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0);
     // x̄ = x̄_source · r(p); ir is inherited (Eq. 5.9–5.10).
     var flags = b.info.x & VPL_IR;
+    if (real_only) { flags |= VPL_IR; }
     if (p.real) {
         flags |= VPL_REAL | (b.info.x & VPL_PATH_REAL);
     }

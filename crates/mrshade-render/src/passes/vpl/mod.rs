@@ -220,7 +220,8 @@ impl VplPass {
         let vpls = [rw("vpl/buffer0", vpl_bytes), rw("vpl/buffer1", vpl_bytes)];
         let ranges = rw("vpl/ranges", sources.len() as u64 * 16);
         let bounce_slots = rw("vpl/bounce_slots", n as u64 * BOUNCE_SLOT_BYTES);
-        let best = rw("vpl/bounce_best", n as u64 * 8);
+        // Per slot: the nearest (or fittest) candidate, then the nearest real one.
+        let best = rw("vpl/bounce_best", n as u64 * 2 * 8);
         let flux_cdf = rw("vpl/previous_flux_cdf", n as u64 * 4);
         let sphere_capacity =
             scene.geometry.realness.iter().filter(|r| **r == mrshade_core::flags::Realness::Virtual).count().max(1);
