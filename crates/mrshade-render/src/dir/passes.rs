@@ -83,6 +83,7 @@ impl DirPasses {
     /// Uploads this frame's counters; call before recording it.
     pub fn prepare(&mut self, queue: &wgpu::Queue, geometry: &Geometry) {
         self.vpl.prepare(queue, self.frame, geometry);
+        self.ism_resources.prepare(queue, geometry.virtual_box());
         self.filter.prepare(queue, self.frame > 0, geometry.moved());
     }
 

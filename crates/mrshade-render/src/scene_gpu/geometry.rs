@@ -48,8 +48,8 @@ pub struct Geometry {
     /// Realness of every instance.
     pub realness: Vec<Realness>,
     static_info: Vec<(UVec4, Mat4)>,
-    /// Object-space bounding sphere of every instance: centre, radius.
-    object_spheres: Vec<Vec4>,
+    /// Object-space bounding box of every instance: min, max.
+    object_boxes: Vec<(Vec3, Vec3)>,
     current: Vec<Mat4>,
     previous: Vec<Mat4>,
     /// Whether `current` differed from `previous` at the last `begin_frame`.
@@ -112,10 +112,10 @@ impl Geometry {
                 mapped_at_creation: false,
             }),
             realness: scene.instances.iter().map(|i| i.realness).collect(),
-            object_spheres: scene
+            object_boxes: scene
                 .instances
                 .iter()
-                .map(|i| bounding_sphere(&scene.primitives[i.primitive].positions))
+                .map(|i| bounding_box(&scene.primitives[i.primitive].positions))
                 .collect(),
             previous: current.clone(),
             current,
@@ -134,17 +134,29 @@ impl Geometry {
     /// World-space bounding spheres (centre, radius) of the virtual instances, as they will
     /// be rendered.
     pub fn virtual_spheres(&self) -> Vec<Vec4> {
-        self.object_spheres
+        self.virtual_boxes()
+            .map(|((lo, hi), m)| {
+                let scale =
+                    m.x_axis.truncate().length().max(m.y_axis.truncate().length()).max(m.z_axis.truncate().length());
+                m.transform_point3((lo + hi) * 0.5).extend((hi - lo).length() * 0.5 * scale)
+            })
+            .collect()
+    }
+
+    /// World-space box around all virtual instances as they will be rendered (None without
+    /// virtual instances).
+    pub fn virtual_box(&self) -> Option<(Vec3, Vec3)> {
+        self.virtual_boxes().map(|(b, m)| world_box(b, m)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+    }
+
+    /// Object box and current transform of every virtual instance.
+    fn virtual_boxes(&self) -> impl Iterator<Item = ((Vec3, Vec3), &Mat4)> + '_ {
+        self.object_boxes
             .iter()
             .zip(&self.current)
             .zip(&self.realness)
             .filter(|(_, realness)| **realness == Realness::Virtual)
-            .map(|((sphere, m), _)| {
-                let scale =
-                    m.x_axis.truncate().length().max(m.y_axis.truncate().length()).max(m.z_axis.truncate().length());
-                m.transform_point3(sphere.truncate()).extend(sphere.w * scale)
-            })
-            .collect()
+            .map(|((b, m), _)| (*b, m))
     }
 
     /// The transform instance `index` will be rendered with.
@@ -178,12 +190,22 @@ impl Geometry {
     }
 }
 
-/// Centre and radius of the box around `points`.
-fn bounding_sphere(points: &[Vec3]) -> Vec4 {
+/// The box around `points` (a point at the origin if there are none).
+fn bounding_box(points: &[Vec3]) -> (Vec3, Vec3) {
     let lo = points.iter().fold(Vec3::splat(f32::INFINITY), |a, &p| a.min(p));
     let hi = points.iter().fold(Vec3::splat(f32::NEG_INFINITY), |a, &p| a.max(p));
-    if lo.x > hi.x {
-        return Vec4::ZERO;
-    }
-    ((lo + hi) * 0.5).extend((hi - lo).length() * 0.5)
+    if lo.x > hi.x { (Vec3::ZERO, Vec3::ZERO) } else { (lo, hi) }
+}
+
+/// The world box around object box `(lo, hi)` moved by `m`.
+fn world_box((lo, hi): (Vec3, Vec3), m: &Mat4) -> (Vec3, Vec3) {
+    (0..8).fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), k| {
+        let corner = Vec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        let p = m.transform_point3(corner);
+        (a.min(p), b.max(p))
+    })
 }

@@ -18,6 +18,8 @@ pub struct Setup {
     pub probe: Option<[f32; 3]>,
     /// The probe is black below the horizon.
     pub sky_only: bool,
+    /// Radiance of a 2×2-texel sun in the probe, 45° above the horizon toward −z.
+    pub sun: Option<[f32; 3]>,
     /// Keys at the top of the session file (before any table).
     pub top_toml: String,
     /// Tables appended to the session file.
@@ -37,6 +39,7 @@ impl Setup {
             photo: Box::new(|_, _| [128, 128, 128]),
             probe: None,
             sky_only: false,
+            sun: None,
             top_toml: "method = \"direct\"\n".into(),
             extra_toml,
         }
@@ -76,8 +79,13 @@ impl Setup {
         let mut toml = "scene = \"scene.gltf\"\nbackground = \"photo.png\"\nexposure = 1.0\n".to_string();
         toml += &self.top_toml;
         if let Some(c) = self.probe {
-            let sky_only = self.sky_only;
-            write_exr(&d.join("probe.exr"), 64, 32, move |_, y| if sky_only && y >= 16 { [0.0; 3] } else { c });
+            let (sky_only, sun) = (self.sky_only, self.sun);
+            // u = atan2(x, −z) / 2π = 0 toward −z (texel columns 63 and 0); v = 45° / 180°.
+            write_exr(&d.join("probe.exr"), 64, 32, move |x, y| match sun {
+                Some(s) if (x == 63 || x == 0) && (y == 7 || y == 8) => s,
+                _ if sky_only && y >= 16 => [0.0; 3],
+                _ => c,
+            });
             toml += "[environment]\nimage = \"probe.exr\"\n";
         }
         toml += &self.extra_toml;

@@ -38,6 +38,9 @@ struct TemporalParams {
 @group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(2) var out_env: texture_storage_2d<rgba16float, write>;
 
+// Scale of the confidence on frames where geometry moved.
+const MOVING_CONFIDENCE: f32 = 0.5;
+
 fn confidence(pixel: vec2i) -> f32 {
     if (params.values.w == 0.0) { return 0.0; }
     let dm = textureLoad(gbuffer_depth_motion, pixel, 0);
@@ -66,8 +69,11 @@ struct Window {
     hi_rv: vec4f,
     lo_r: vec4f,
     hi_r: vec4f,
-    lo_env: vec4f,
-    hi_env: vec4f,
+    // The environment channel's visibility ratios (Σw·V_rv / Σw, Σw·V_r / Σw): one subset of
+    // the environment VPLs may hold the sun and the next none, so Σw·V itself ranges widely
+    // over a window even where nothing is shadowed; its ratios do not.
+    lo_env: vec2f,
+    hi_env: vec2f,
 }
 
 // Per-channel range of the new values over the I×I window around `pixel` (same surface only).
@@ -80,8 +86,8 @@ fn new_range(pixel: vec2i) -> Window {
     w.hi_rv = vec4f(-3.0e38);
     w.lo_r = w.lo_rv;
     w.hi_r = w.hi_rv;
-    w.lo_env = w.lo_rv;
-    w.hi_env = w.hi_rv;
+    w.lo_env = vec2f(3.0e38);
+    w.hi_env = vec2f(-3.0e38);
     for (var y = 0; y < i; y++) {
         for (var x = 0; x < i; x++) {
             let q = clamp(start + vec2i(x, y), vec2i(0), vec2i(frame.size.xy) - 1);
@@ -94,8 +100,10 @@ fn new_range(pixel: vec2i) -> Window {
             w.hi_rv = max(w.hi_rv, rv);
             w.lo_r = min(w.lo_r, r);
             w.hi_r = max(w.hi_r, r);
-            w.lo_env = min(w.lo_env, env);
-            w.hi_env = max(w.hi_env, env);
+            if (env.z > 0.0) {
+                w.lo_env = min(w.lo_env, env.xy / env.z);
+                w.hi_env = max(w.hi_env, env.xy / env.z);
+            }
         }
     }
     return w;
@@ -117,11 +125,18 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         textureStore(out_env, pixel, mix(new_env_value, textureLoad(history_env, q, 0), c));
         return;
     }
+    // While geometry moves, shadows and bounces move over still surfaces, whose history the
+    // position and normal tests keep: besides the clamp, the history weighs less, so that a
+    // moving object's shadows lag by about a frame instead of ~1 / (1 − c).
+    let c_moving = c * MOVING_CONFIDENCE;
     let w = new_range(pixel);
     let old_rv = clamp(textureLoad(history_rv, q, 0), w.lo_rv, w.hi_rv);
     let old_r = clamp(textureLoad(history_r, q, 0), w.lo_r, w.hi_r);
-    let old_env = clamp(textureLoad(history_env, q, 0), w.lo_env, w.hi_env);
-    textureStore(out_rv, pixel, mix(new_rv_value, old_rv, c));
-    textureStore(out_r, pixel, mix(new_r_value, old_r, c));
-    textureStore(out_env, pixel, mix(new_env_value, old_env, c));
+    var old_env = textureLoad(history_env, q, 0);
+    if (old_env.z > 0.0 && w.lo_env.x <= w.hi_env.x) {
+        old_env = vec4f(clamp(old_env.xy / old_env.z, w.lo_env, w.hi_env) * old_env.z, old_env.zw);
+    }
+    textureStore(out_rv, pixel, mix(new_rv_value, old_rv, c_moving));
+    textureStore(out_r, pixel, mix(new_r_value, old_r, c_moving));
+    textureStore(out_env, pixel, mix(new_env_value, old_env, c_moving));
 }

@@ -22,7 +22,7 @@ pub struct IsmParams {
     pub tile: UVec4,
     /// Bounding sphere of the real points: centre, radius.
     pub scene: Vec4,
-    /// Bounding sphere of the virtual points.
+    /// Bounding sphere of the virtual objects (follows them when they move).
     pub scene_virtual: Vec4,
     /// Splat half-size of real and virtual points (m), relative depth bias, receiver offset
     /// in splat half-sizes.
@@ -45,6 +45,10 @@ pub struct IsmResources {
     pub virtual_count: u32,
     /// Surface areas sampled by the two clouds (m²).
     pub areas: (f32, f32),
+    /// Bounding sphere of the virtual points at load time.
+    points_sphere: Vec4,
+    /// Sphere of the box around the virtual objects at the first frame.
+    first_virtual_box: Option<Vec4>,
     /// ISM atlas of the real points.
     pub atlas_real: wgpu::Buffer,
     /// ISM atlas of the virtual points.
@@ -93,15 +97,33 @@ impl IsmResources {
             params_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("ism/params"),
                 contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             }),
             points_real: points("ism/points_real", &real),
             points_virtual: points("ism/points_virtual", &virt),
             real_count: real.points.len() as u32,
             virtual_count: virt.points.len() as u32,
             areas: (real.area, virt.area),
+            points_sphere: params.scene_virtual,
+            first_virtual_box: None,
             atlas_real: atlas("ism/atlas_real"),
             atlas_virtual: atlas("ism/atlas_virtual"),
+        }
+    }
+
+    /// Moves the virtual atlas's directional maps with the virtual objects: `virtual_box` is
+    /// the box around them now (`None`: there are none). The sphere of their points at load
+    /// time is shifted and scaled as that box moved and grew, so that a moved object keeps its
+    /// probe shadows (and a still scene keeps the tighter sphere of its points).
+    pub fn prepare(&mut self, queue: &wgpu::Queue, virtual_box: Option<(glam::Vec3, glam::Vec3)>) {
+        let Some((lo, hi)) = virtual_box else { return };
+        let now = sphere_of_box(lo, hi);
+        let first = *self.first_virtual_box.get_or_insert(now);
+        let sphere = (self.points_sphere.truncate() + now.truncate() - first.truncate())
+            .extend(self.points_sphere.w * now.w / first.w);
+        if sphere != self.params.scene_virtual {
+            self.params.scene_virtual = sphere;
+            queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
         }
     }
 
@@ -335,5 +357,10 @@ fn bounding_sphere(points: &[GpuPoint], scene: &Scene) -> Option<Vec4> {
         lo = lo.min(w);
         hi = hi.max(w);
     }
-    (lo.x <= hi.x).then(|| ((lo + hi) * 0.5).extend(((hi - lo).length() * 0.5).max(1e-3) * 1.01))
+    (lo.x <= hi.x).then(|| sphere_of_box(lo, hi))
+}
+
+/// The sphere through the corners of box `(lo, hi)`, padded by 1 %.
+fn sphere_of_box(lo: glam::Vec3, hi: glam::Vec3) -> Vec4 {
+    ((lo + hi) * 0.5).extend(((hi - lo).length() * 0.5).max(1e-3) * 1.01)
 }
