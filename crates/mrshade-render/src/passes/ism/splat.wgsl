@@ -35,6 +35,10 @@ fn cs_main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) g
     let centre = ism_project(v, world, ism, virtual_atlas);
     if (!centre.valid) { return; }
     let n = normalize((inst.normal_from_object * vec4f(p.normal, 0.0)).xyz);
+    // A surface whose plane holds the VPL (the floor a floor VPL lies on) is seen edge-on and
+    // hides nothing above it; splatted, its points would still fill their own texels at the
+    // map's rim, and shadow every receiver low over that surface.
+    if (abs(dot(world - v.position.xyz, n)) < 1e-3 * centre.depth) { return; }
     let tb = tangent_frame(n);
     let r = select(ism.splat.x, ism.splat.y, virtual_atlas);
     let res = f32(ism.tile.x);
