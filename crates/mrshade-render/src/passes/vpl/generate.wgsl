@@ -40,25 +40,43 @@ fn rsm_node(layer: u32, level: u32, x: u32, y: u32) -> vec2f {
     return rsm_pyramid[layer * params.rsm.z + rsm_level_offset(level) + y * side + x];
 }
 
+// One step of hierarchical warping: picks the child of a 2×2 block (importances w = top left,
+// top right, bottom left, bottom right) ∝ importance, column first, and rescales `u` to [0, 1)
+// within it.
+fn warp_quad(u: ptr<function, vec2f>, w: vec4f) -> vec2u {
+    let left = w.x + w.z;
+    let total = max(left + w.y + w.w, 1e-30);
+    var col = 0u;
+    if ((*u).x * total < left) {
+        (*u).x = min((*u).x * total / max(left, 1e-30), 0.99999);
+    } else {
+        (*u).x = min(((*u).x * total - left) / max(w.y + w.w, 1e-30), 0.99999);
+        col = 1u;
+    }
+    let top = select(w.y, w.x, col == 0u);
+    let bottom = select(w.w, w.z, col == 0u);
+    var row = 0u;
+    if ((*u).y * (top + bottom) < top) {
+        (*u).y = min((*u).y * (top + bottom) / max(top, 1e-30), 0.99999);
+    } else {
+        (*u).y = min(((*u).y * (top + bottom) - top) / max(bottom, 1e-30), 0.99999);
+        row = 1u;
+    }
+    return vec2u(col, row);
+}
+
 // Hierarchical warping of `u` down one layer's pyramid; returns the texel (x, y).
 fn warp_rsm(layer: u32, u_in: vec2f) -> vec2u {
     var u = u_in;
     var p = vec2u(0u);
     for (var level = params.rsm.y - 1u; level > 0u; level--) {
         let q = p * 2u;
-        let a = rsm_node(layer, level - 1u, q.x, q.y).x;
-        let b = rsm_node(layer, level - 1u, q.x + 1u, q.y).x;
-        let c = rsm_node(layer, level - 1u, q.x, q.y + 1u).x;
-        let d = rsm_node(layer, level - 1u, q.x + 1u, q.y + 1u).x;
-        let left = a + c;
-        let total = max(left + b + d, 1e-30);
-        var col = 0u;
-        if (u.x * total < left) { u.x = min(u.x * total / max(left, 1e-30), 0.99999); } else { u.x = min((u.x * total - left) / max(b + d, 1e-30), 0.99999); col = 1u; }
-        let top = select(b, a, col == 0u);
-        let bottom = select(d, c, col == 0u);
-        var row = 0u;
-        if (u.y * (top + bottom) < top) { u.y = min(u.y * (top + bottom) / max(top, 1e-30), 0.99999); } else { u.y = min((u.y * (top + bottom) - top) / max(bottom, 1e-30), 0.99999); row = 1u; }
-        p = q + vec2u(col, row);
+        p = q + warp_quad(&u, vec4f(
+            rsm_node(layer, level - 1u, q.x, q.y).x,
+            rsm_node(layer, level - 1u, q.x + 1u, q.y).x,
+            rsm_node(layer, level - 1u, q.x, q.y + 1u).x,
+            rsm_node(layer, level - 1u, q.x + 1u, q.y + 1u).x,
+        ));
     }
     return p;
 }
@@ -159,19 +177,12 @@ fn environment_vpl(source: u32, seq: u32, count: u32) -> Vpl {
     if (u.x * (l + r) < l) { u.x = min(u.x * (l + r) / max(l, 1e-30), 0.99999); } else { u.x = min((u.x * (l + r) - l) / max(r, 1e-30), 0.99999); p.x = 1u; }
     for (var level = levels - 1u; level > 0u; level--) {
         let q = p * 2u;
-        let a = probe_node(level - 1u, q.x, q.y);
-        let b = probe_node(level - 1u, q.x + 1u, q.y);
-        let c = probe_node(level - 1u, q.x, q.y + 1u);
-        let d = probe_node(level - 1u, q.x + 1u, q.y + 1u);
-        let left = a + c;
-        let total = max(left + b + d, 1e-30);
-        var col = 0u;
-        if (u.x * total < left) { u.x = min(u.x * total / max(left, 1e-30), 0.99999); } else { u.x = min((u.x * total - left) / max(b + d, 1e-30), 0.99999); col = 1u; }
-        let top = select(b, a, col == 0u);
-        let bottom = select(d, c, col == 0u);
-        var row = 0u;
-        if (u.y * (top + bottom) < top) { u.y = min(u.y * (top + bottom) / max(top, 1e-30), 0.99999); } else { u.y = min((u.y * (top + bottom) - top) / max(bottom, 1e-30), 0.99999); row = 1u; }
-        p = q + vec2u(col, row);
+        p = q + warp_quad(&u, vec4f(
+            probe_node(level - 1u, q.x, q.y),
+            probe_node(level - 1u, q.x + 1u, q.y),
+            probe_node(level - 1u, q.x, q.y + 1u),
+            probe_node(level - 1u, q.x + 1u, q.y + 1u),
+        ));
     }
     let w = params.probe.x;
     let h = params.probe.y;
