@@ -50,6 +50,16 @@ pub struct TemporalSettings {
     /// `c_B`: base confidence, the largest share of the previous frame; not in the thesis
     /// (extraction's suggestion 0.8–0.9). Default 0.9.
     pub base_confidence: f32,
+    /// Largest share of the previous frame while nothing in the scene moves. Once the scene
+    /// has kept still for a few frames (while the bounces build up), the smoothing becomes
+    /// a running mean over the frames since the last change, its weight growing from `c_B`
+    /// up to this value, and it no longer tests for illumination changes (a still scene has
+    /// none; what changes is only the VPLs' noise). The thesis's smoothing is the moving
+    /// case; at `c_B` or below it applies always. Not in the thesis. Default 0.9 (= `c_B`:
+    /// off, the thesis's smoothing). For a locked-off shot, 0.99 (a window of about 100
+    /// frames) with 128 or more still frames took the Cornell box from region FLIP 0.105
+    /// to 0.091 (docs/benchmarks.md).
+    pub static_confidence: f32,
 }
 
 impl Default for TemporalSettings {
@@ -60,6 +70,7 @@ impl Default for TemporalSettings {
             normal_weight: 1.0,
             illumination_weight: 0.025,
             base_confidence: 0.9,
+            static_confidence: 0.9,
         }
     }
 }
@@ -189,6 +200,11 @@ impl DirSettings {
             format!("must be in [0, 1), got {}", t.base_confidence),
         )?;
         check(
+            (0.0..1.0).contains(&t.static_confidence),
+            "dir.temporal.static_confidence",
+            format!("must be in [0, 1), got {}", t.static_confidence),
+        )?;
+        check(
             t.position_weights
                 .iter()
                 .chain([&t.normal_weight, &t.illumination_weight])
@@ -224,6 +240,9 @@ mod tests {
         let mut d = DirSettings::default();
         d.temporal.base_confidence = 1.0;
         assert!(d.validate().unwrap_err().contains("base_confidence"));
+        let mut d = DirSettings::default();
+        d.temporal.static_confidence = 1.0;
+        assert!(d.validate().unwrap_err().contains("static_confidence"));
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! recorded in the order of Knecht §1.4: RSMs → VPLs → ISMs → interleaved indirect shading →
 //! temporal smoothing and merge. Direct light and the composite follow in `crate::frame`.
 
-use crate::passes::filter::FilterPass;
+use crate::passes::filter::{FilterPass, History};
 use crate::passes::gbuffer::GBuffer;
 use crate::passes::indirect::{IndirectBuffers, IndirectPass};
 use crate::passes::ism::{IsmPass, IsmResources};
@@ -32,6 +32,8 @@ pub struct DirPasses {
     /// Temporal smoothing and merge.
     pub filter: FilterPass,
     frame: u32,
+    /// Frames since anything in the scene moved.
+    still_frames: u32,
 }
 
 impl DirPasses {
@@ -77,14 +79,18 @@ impl DirPasses {
             &interleaved,
         );
         let filter = FilterPass::new(ctx, frame_uniforms, settings, session.exposure, gbuffer, &interleaved);
-        Self { rsm, ism_resources, vpl, ism, interleaved, indirect, filter, frame: 0 }
+        Self { rsm, ism_resources, vpl, ism, interleaved, indirect, filter, frame: 0, still_frames: 0 }
     }
 
     /// Uploads this frame's counters; call before recording it.
     pub fn prepare(&mut self, queue: &wgpu::Queue, geometry: &Geometry) {
         self.vpl.prepare(queue, self.frame, geometry);
         self.ism_resources.prepare(queue, geometry.virtual_box());
-        self.filter.prepare(queue, self.frame > 0, geometry.moved());
+        // Only instances move so far; a moving camera or light will have to count as a
+        // change here too.
+        self.still_frames = if geometry.moved() || self.frame == 0 { 0 } else { self.still_frames + 1 };
+        let history = History { exists: self.frame > 0, moved: geometry.moved(), still_frames: self.still_frames };
+        self.filter.prepare(queue, history);
     }
 
     /// Records the method's passes for the current frame and advances the frame counter.

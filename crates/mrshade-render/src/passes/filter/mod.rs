@@ -12,29 +12,55 @@ use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
 
 #[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
+#[derive(Clone, Copy, Pod, Zeroable, PartialEq)]
 struct TemporalParams {
     weights: Vec4,
     values: Vec4,
     /// Interleave I, 1 if geometry moved (then the history is clamped to the range of an
-    /// I×I window of new values).
+    /// I×I window of new values), 1 while a still scene accumulates (no illumination test).
     block: UVec4,
 }
 
+/// Frames a still scene keeps the thesis's smoothing before it accumulates: the multiple-
+/// bounce source adds one bounce per frame, so the first frames lack light that a running
+/// mean would keep for long.
+pub const STILL_WARMUP_FRAMES: u32 = 8;
+
+/// The history's weight after `still_frames` frames in which nothing moved (0 on the frame
+/// of a change): `c_B`, then, after the warm-up, a running mean over the still frames
+/// (1 − 1/n) once that exceeds `c_B`, up to `static_confidence`. Returns the weight and
+/// whether the scene accumulates.
+pub fn history_weight(t: &TemporalSettings, still_frames: u32) -> (f32, bool) {
+    if !t.enabled {
+        return (0.0, false);
+    }
+    let n = still_frames.saturating_sub(STILL_WARMUP_FRAMES) as f32;
+    let running = 1.0 - 1.0 / (n + 1.0);
+    let c = running.min(t.static_confidence);
+    if c > t.base_confidence { (c, true) } else { (t.base_confidence, false) }
+}
+
 impl TemporalParams {
-    fn new(t: &TemporalSettings, interleave: u32, exposure: f32, has_history: bool, moved: bool) -> Self {
+    fn new(t: &TemporalSettings, interleave: u32, exposure: f32, history: History) -> Self {
         let [wx, wy, wd] = t.position_weights;
+        let (confidence, accumulating) = history_weight(t, history.still_frames);
         Self {
             weights: Vec4::new(wx, wy, wd, t.normal_weight),
-            values: Vec4::new(
-                t.illumination_weight,
-                if t.enabled { t.base_confidence } else { 0.0 },
-                exposure,
-                has_history as u32 as f32,
-            ),
-            block: UVec4::new(interleave, moved as u32, 0, 0),
+            values: Vec4::new(t.illumination_weight, confidence, exposure, history.exists as u32 as f32),
+            block: UVec4::new(interleave, history.moved as u32, accumulating as u32, 0),
         }
     }
+}
+
+/// What the temporal step needs to know of the frames before this one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct History {
+    /// A previous frame exists (false after a reset).
+    pub exists: bool,
+    /// Geometry moved since it.
+    pub moved: bool,
+    /// Frames since anything moved (0 on the frame of a change).
+    pub still_frames: u32,
 }
 
 /// Temporal smoothing then filtering of the indirect buffers.
@@ -48,12 +74,11 @@ pub struct FilterPass {
     temporal_params: wgpu::Buffer,
     settings: TemporalSettings,
     interleave: u32,
-    moved: bool,
+    params: TemporalParams,
     exposure: f32,
     /// `[parity]`: temporal groups 0, 1, 2, then filter groups 0, 1, 2.
     groups: [[wgpu::BindGroup; 6]; 2],
     size: (u32, u32),
-    has_history: bool,
 }
 
 impl FilterPass {
@@ -98,15 +123,10 @@ impl FilterPass {
         let cs = wgpu::ShaderStages::COMPUTE;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
+        let params = TemporalParams::new(&settings.temporal, settings.interleave, exposure, History::default());
         let temporal_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("temporal/params"),
-            contents: bytemuck::bytes_of(&TemporalParams::new(
-                &settings.temporal,
-                settings.interleave,
-                exposure,
-                false,
-                false,
-            )),
+            contents: bytemuck::bytes_of(&params),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let filter_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -197,18 +217,16 @@ impl FilterPass {
             exposure,
             groups,
             size,
-            has_history: false,
-            moved: false,
+            params,
         }
     }
 
-    /// Tells the temporal step whether a previous frame exists (false after a reset) and
-    /// whether geometry moved since it (then the history is clamped, see temporal.wgsl).
-    pub fn prepare(&mut self, queue: &wgpu::Queue, has_history: bool, moved: bool) {
-        if (has_history, moved) != (self.has_history, self.moved) {
-            self.has_history = has_history;
-            self.moved = moved;
-            let p = TemporalParams::new(&self.settings, self.interleave, self.exposure, has_history, moved);
+    /// Tells the temporal step what happened in the frames before this one (see
+    /// temporal.wgsl: clamping after motion, accumulation while still).
+    pub fn prepare(&mut self, queue: &wgpu::Queue, history: History) {
+        let p = TemporalParams::new(&self.settings, self.interleave, self.exposure, history);
+        if p != self.params {
+            self.params = p;
             queue.write_buffer(&self.temporal_params, 0, bytemuck::bytes_of(&p));
         }
     }
@@ -239,3 +257,25 @@ impl FilterPass {
 pub const TEMPORAL_SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "temporal.wgsl");
 /// The filter module.
 pub const FILTER_SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "filter.wgsl");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_still_scene_accumulates_after_the_warm_up_and_only_when_asked_to() {
+        let thesis = TemporalSettings::default();
+        for still in [0, 5, 50, 5000] {
+            assert_eq!(history_weight(&thesis, still), (0.9, false), "default: the thesis's c_B");
+        }
+        let t = TemporalSettings { static_confidence: 0.99, ..thesis };
+        assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES), (0.9, false));
+        // A running mean (1 − 1/n over the n frames after the warm-up) once above c_B…
+        assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES + 9), (0.9, false));
+        assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES + 19), (0.95, true));
+        // …up to static_confidence.
+        assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES + 1000), (0.99, true));
+        let off = TemporalSettings { enabled: false, ..t };
+        assert_eq!(history_weight(&off, 1000), (0.0, false));
+    }
+}
