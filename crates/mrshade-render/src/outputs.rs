@@ -139,8 +139,9 @@ impl Renderer {
         let (iw, ih) = self.internal_size();
         let exposure = self.exposure();
         let visibility = self.read_probe_visibility(ctx)?.expect("dir method");
-        let gray =
-            |v: &[f32]| -> Vec<u8> { v.iter().flat_map(|r| [(r.clamp(0.0, 1.0) * 255.0 + 0.5) as u8; 3]).collect() };
+        let ratio_rgb = |v: &[[f32; 3]]| -> Vec<u8> {
+            v.iter().flat_map(|r| r.map(|c| (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)).collect()
+        };
         let vpls = self.read_vpls(ctx)?;
         let IsmDepths { side, depths, .. } = self.read_ism_depths(ctx)?.expect("dir method");
         let far = 2.0 * dir.ism_resources.params.scene.w;
@@ -168,11 +169,11 @@ impl Renderer {
             Aov { name: "ism_virtual", image: atlas(&depths.rv) },
             Aov {
                 name: "probe_visibility_rv",
-                image: AovImage::Display { width: iw, height: ih, rgb: gray(&visibility.rv) },
+                image: AovImage::Display { width: iw, height: ih, rgb: ratio_rgb(&visibility.rv) },
             },
             Aov {
                 name: "probe_visibility_r",
-                image: AovImage::Display { width: iw, height: ih, rgb: gray(&visibility.r) },
+                image: AovImage::Display { width: iw, height: ih, rgb: ratio_rgb(&visibility.r) },
             },
             Aov {
                 name: "indirect_split_rv",
@@ -186,14 +187,18 @@ impl Renderer {
         ])
     }
 
-    /// The probe's visibility ratios (`dir` method): per internal pixel, the share of the
-    /// probe's (cosine-weighted) light that reaches it in `L_rv` and in `L_r`; `None` for
-    /// other methods.
-    pub fn read_probe_visibility(&self, ctx: &GpuContext) -> Result<Option<Differential<Vec<f32>>>> {
+    /// The probe's visibility ratios (`dir` method): per internal pixel and color channel, the
+    /// share of the probe's (cosine-weighted) light that reaches it in `L_rv` and in `L_r`;
+    /// `None` for other methods.
+    pub fn read_probe_visibility(&self, ctx: &GpuContext) -> Result<Option<Differential<Vec<[f32; 3]>>>> {
         let Some(dir) = &self.dir else { return Ok(None) };
-        let env = read_rgba16f(ctx, &dir.filter.merged.env)?;
-        let ratio = |k: usize| env.pixels.iter().map(|e| if e[2] > 0.0 { e[k] / e[2] } else { 1.0 }).collect();
-        Ok(Some(Differential { rv: ratio(0), r: ratio(1) }))
+        let merged = &dir.filter.merged;
+        let weight = read_rgba16f(ctx, &merged.env_weight)?;
+        let ratio = |visible: &Target| -> Result<Vec<[f32; 3]>> {
+            let visible = read_rgba16f(ctx, visible)?;
+            Ok(visible.pixels.iter().zip(&weight.pixels).map(|(v, w)| visibility_ratio(v, w)).collect())
+        };
+        Ok(Some(Differential { rv: ratio(&merged.env.rv)?, r: ratio(&merged.env.r)? }))
     }
 
     /// The merged, smoothed indirect light of both solutions (radiance, `dir` method).
@@ -280,6 +285,11 @@ fn signed_colors(diff: &HdrImage) -> Vec<u8> {
             if v >= 0.0 { [0, m, 0] } else { [m, 0, 0] }
         })
         .collect()
+}
+
+/// Σw_c·V / Σw_c per channel; 1 where no environment VPL reached the pixel (as direct.wgsl).
+fn visibility_ratio(visible: &[f32; 3], weight: &[f32; 3]) -> [f32; 3] {
+    std::array::from_fn(|c| if weight[c] > 0.0 { visible[c] / weight[c] } else { 1.0 })
 }
 
 fn read_rgba16f(ctx: &GpuContext, target: &Target) -> Result<HdrImage> {

@@ -6,10 +6,12 @@ use common::{Rendered, Setup};
 use glam::Vec3;
 use serde_json::json;
 
-/// A virtual sphere (radius `r`, centre height `h`) over a real plane, under a uniform probe.
-fn floating_sphere(r: f32, h: f32, extra: &str) -> Rendered {
+/// A virtual sphere (radius `r`, centre height `h`) over a real plane, under a probe that is
+/// `plus_x` toward +x and white elsewhere.
+fn floating_sphere(r: f32, h: f32, plus_x: [f32; 3], extra: &str) -> Rendered {
     let mut s = Setup::top_down(32);
     s.probe = Some([1.0, 1.0, 1.0]);
+    s.probe_plus_x = Some(plus_x);
     s.top_toml = "method = \"dir\"\n".into();
     s.extra_toml = format!("[output]\nframes = 16\n{}{extra}", s.extra_toml);
     s.plane(2.0, 0.0, 0.5, true);
@@ -23,20 +25,32 @@ fn floating_sphere(r: f32, h: f32, extra: &str) -> Rendered {
 
 #[test]
 fn environment_shadow_of_a_floating_sphere_matches_its_form_factor() {
-    check_sphere_shadow(0.08, 0.25);
+    check_sphere_shadow(0.08, 0.25, [1.0; 3]);
 }
 
 #[test]
 fn environment_shadow_of_a_resting_sphere_matches_its_form_factor() {
-    check_sphere_shadow(0.08, 0.08);
+    check_sphere_shadow(0.08, 0.08, [1.0; 3]);
 }
 
-fn check_sphere_shadow(radius: f32, height: f32) {
+/// Under a probe whose half toward +x is red (and white elsewhere), a sphere on the +x side of
+/// a point hides only red light from it: the point's shadow is cyan, with a red ratio of
+/// 1 − FF and green and blue ratios of 1. One luminance-weighted ratio for all channels would
+/// make the shadow gray.
+#[test]
+fn environment_shadow_has_the_color_of_the_light_it_blocks() {
+    check_sphere_shadow(0.08, 0.08, [1.0, 0.0, 0.0]);
+}
+
+fn check_sphere_shadow(radius: f32, height: f32, plus_x: [f32; 3]) {
     let centre = Vec3::new(0.15, height, 0.0);
     // Interleaving off: at 32×32 pixels a 4×4 block spans 14 cm of the plane, and its
     // merge would blur the contact shadow being checked.
-    let r = floating_sphere(radius, height, "[dir]\ninterleave = 1\n");
+    let r = floating_sphere(radius, height, plus_x, "[dir]\ninterleave = 1\n");
     let vis = r.renderer.read_probe_visibility(&r.ctx).unwrap().unwrap();
+    // The share of each channel's irradiance that comes from the +x half.
+    let half_share = plus_x.map(|c| c / (c + 1.0));
+    let uniform = plus_x == [1.0; 3];
     let mut worst = 0.0f32;
     let mut checked = 0;
     let mut bias = 0.0f32;
@@ -47,25 +61,32 @@ fn check_sphere_shadow(radius: f32, height: f32) {
             if common::segment_hits_box(Vec3::new(0.0, 1.0, 0.0), p, centre, radius * 1.05) {
                 continue;
             }
+            // With a colored half, only points that see the whole sphere in the +x half.
+            if !uniform && p.x > centre.x - radius - 0.02 {
+                continue;
+            }
             let to = centre - p;
             let d = to.length();
             // Point-to-sphere form factor: cos β (r/d)² (the sphere is above the horizon).
-            let expected = 1.0 - (to.y / d) * (radius / d).powi(2);
-            let got = vis.rv[(y * 32 + x) as usize];
-            assert!(
-                (vis.r[(y * 32 + x) as usize] - 1.0).abs() < 0.05,
-                "open plane: ratio_r {}",
-                vis.r[(y * 32 + x) as usize]
-            );
-            if (got - expected).abs() > worst {
-                eprintln!("({x},{y}) p={p} expected {expected:.3} got {got:.3}");
+            let form_factor = (to.y / d) * (radius / d).powi(2);
+            let i = (y * 32 + x) as usize;
+            for (c, share) in half_share.iter().enumerate() {
+                // The share of channel c's light that the sphere's directions carry, relative to
+                // a uniform probe: 2 · half_share (1 for a uniform probe).
+                let expected = 1.0 - form_factor * 2.0 * share;
+                let got = vis.rv[i][c];
+                assert!((vis.r[i][c] - 1.0).abs() < 0.05, "open plane: ratio_r {:?}", vis.r[i]);
+                if (got - expected).abs() > worst {
+                    eprintln!("({x},{y}) channel {c} p={p} expected {expected:.3} got {got:.3}");
+                }
+                worst = worst.max((got - expected).abs());
+                bias += got - expected;
+                checked += 1;
             }
-            worst = worst.max((got - expected).abs());
-            bias += got - expected;
-            checked += 1;
         }
     }
-    eprintln!("worst |ratio_rv − exact| = {worst:.3}, mean error {:.4}, over {checked} pixels", bias / checked as f32);
+    eprintln!("worst |ratio_rv − exact| = {worst:.3}, mean error {:.4}, over {checked} values", bias / checked as f32);
+    assert!(checked >= 30, "only {checked} values checked");
     assert!(worst < 0.06, "worst error {worst}");
 }
 
@@ -171,7 +192,7 @@ fn a_wall_on_a_floor_sees_all_of_the_sky() {
         for x in 8..24 {
             let q = r.world_on_plane_x(x, y, 0.2);
             if q.y > 0.005 && q.y < 0.55 && q.z.abs() < 0.25 {
-                let v = vis.r[(y * 32 + x) as usize];
+                let v = vis.r[(y * 32 + x) as usize][1];
                 if v < worst {
                     eprintln!("({x},{y}) height {:.3}: ratio_r {v:.3}", q.y);
                 }

@@ -22,7 +22,8 @@ fn check(name: &str, r: &Rendered) {
 #[test]
 fn demo_session() {
     let demo = AssetSource::Dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo").into());
-    let overrides = SessionOverrides { width: Some(160), ..Default::default() };
+    // 48 frames, not the still's default 256, keep the suite fast.
+    let overrides = SessionOverrides { width: Some(160), set: vec!["output.frames=48".into()], ..Default::default() };
     let session = Session::load_from(&demo, "session.toml", &overrides).unwrap();
     check("demo_160x120", &Rendered::new(session));
 }

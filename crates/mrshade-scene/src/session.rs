@@ -14,7 +14,7 @@
 //! width = 640
 //! height = 480
 //! supersample = 1               # shading samples per pixel per axis (1–4)
-//! frames = 48                   # frames for a still, the last half averaged (default: 48 for dir, 1 for direct)
+//! frames = 256                  # frames for a still, the last half averaged (default: 256 for dir, 1 for direct)
 //! [composite]                   # optional: see mrshade_core::settings::CompositeSettings
 //! [shadows]                     # optional: see mrshade_core::settings::ShadowSettings
 //! [dir]                         # optional: see mrshade_core::settings::DirSettings
@@ -102,13 +102,14 @@ pub struct OutputSize {
     pub frames: u32,
 }
 
-/// Frames a still image takes by default: one for `direct`; 48 for `dir`, whose temporal
-/// smoothing (base confidence 0.9) and multiple bounces converge within 24 frames, the next
-/// 24 being averaged.
+/// Frames a still image takes by default: one for `direct`; 256 for `dir`, whose multiple
+/// bounces build up over the first frames and whose still-scene smoothing then averages the
+/// VPLs of about 250 frames (`dir.temporal.static_confidence`), the last 128 frames' composites
+/// being averaged with sub-pixel jitter. Milliseconds on a GPU; minutes on lavapipe.
 pub fn default_frames(method: Method) -> u32 {
     match method {
         Method::Direct => 1,
-        Method::Dir => 48,
+        Method::Dir => 256,
     }
 }
 

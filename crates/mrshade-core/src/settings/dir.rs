@@ -54,11 +54,12 @@ pub struct TemporalSettings {
     /// has kept still for a few frames (while the bounces build up), the smoothing becomes
     /// a running mean over the frames since the last change, its weight growing from `c_B`
     /// up to this value, and it no longer tests for illumination changes (a still scene has
-    /// none; what changes is only the VPLs' noise). The thesis's smoothing is the moving
-    /// case; at `c_B` or below it applies always. Not in the thesis. Default 0.9 (= `c_B`:
-    /// off, the thesis's smoothing). For a locked-off shot, 0.99 (a window of about 100
-    /// frames) with 128 or more still frames took the Cornell box from region FLIP 0.105
-    /// to 0.091 (docs/benchmarks.md).
+    /// none; what changes is only the VPLs' noise). Anything moving resets it to the
+    /// thesis's smoothing. Not in the thesis. Default 0.996, a window of about 250 frames'
+    /// VPLs: 256 VPLs per frame leave low-frequency noise (a VPL near a surface lights a
+    /// blob) that the thesis's c_B = 0.9 (about 19 frames) keeps visible in a still; the
+    /// Cornell box's region FLIP goes from 0.107 to 0.082 (docs/benchmarks.md). At `c_B` or
+    /// below: off, the thesis's smoothing always.
     pub static_confidence: f32,
 }
 
@@ -70,7 +71,7 @@ impl Default for TemporalSettings {
             normal_weight: 1.0,
             illumination_weight: 0.025,
             base_confidence: 0.9,
-            static_confidence: 0.9,
+            static_confidence: 0.996,
         }
     }
 }
@@ -102,7 +103,10 @@ pub struct DirSettings {
     pub bounce_cone_deg: f32,
     /// Lower bound of the VPL–receiver distance in the geometry term, as a fraction of the
     /// scene's bounding radius; clamps the 1/d² singularity (not in the thesis; suggestion
-    /// 5–10 % of the scene). Default 0.05.
+    /// 5–10 % of the scene). Default 0.025: the still-scene smoothing averages enough VPLs
+    /// for a smaller clamp, which loses less of the light between close surfaces (a torus
+    /// lit by the desk it stands on; desk-spot-real region FLIP 0.066 → 0.064 at 256 frames).
+    /// Larger values trade that bias for less noise while things move.
     pub clamp_distance: f32,
     /// Screen-space samples per pixel and frame of the near-field bounce: light between
     /// surfaces closer than `clamp_distance`, the part of the VPLs' light that clamping
@@ -136,7 +140,7 @@ impl Default for DirSettings {
             weights: BTreeMap::new(),
             bounce: BounceMethod::Importance,
             bounce_cone_deg: 5.0,
-            clamp_distance: 0.05,
+            clamp_distance: 0.025,
             near_field_samples: 4,
             splat_scale: 1.5,
             ism_bias: 0.03,

@@ -20,6 +20,8 @@ pub struct Setup {
     pub sky_only: bool,
     /// Radiance of a 2×2-texel sun in the probe, 45° above the horizon toward −z.
     pub sun: Option<[f32; 3]>,
+    /// Radiance of the probe's half toward +x, if it differs from `probe`'s.
+    pub probe_plus_x: Option<[f32; 3]>,
     /// Keys at the top of the session file (before any table).
     pub top_toml: String,
     /// Tables appended to the session file.
@@ -40,6 +42,7 @@ impl Setup {
             probe: None,
             sky_only: false,
             sun: None,
+            probe_plus_x: None,
             top_toml: "method = \"direct\"\n".into(),
             extra_toml,
         }
@@ -79,11 +82,13 @@ impl Setup {
         let mut toml = "scene = \"scene.gltf\"\nbackground = \"photo.png\"\nexposure = 1.0\n".to_string();
         toml += &self.top_toml;
         if let Some(c) = self.probe {
-            let (sky_only, sun) = (self.sky_only, self.sun);
-            // u = atan2(x, −z) / 2π = 0 toward −z (texel columns 63 and 0); v = 45° / 180°.
-            write_exr(&d.join("probe.exr"), 64, 32, move |x, y| match sun {
-                Some(s) if (x == 63 || x == 0) && (y == 7 || y == 8) => s,
+            let (sky_only, sun, plus_x) = (self.sky_only, self.sun, self.probe_plus_x);
+            // u = atan2(x, −z) / 2π = 0 toward −z (texel columns 63 and 0), 1/4 toward +x
+            // (columns 0–31 are the half toward +x); v = 45° / 180°.
+            write_exr(&d.join("probe.exr"), 64, 32, move |x, y| match (sun, plus_x) {
+                (Some(s), _) if (x == 63 || x == 0) && (y == 7 || y == 8) => s,
                 _ if sky_only && y >= 16 => [0.0; 3],
+                (_, Some(p)) if x < 32 => p,
                 _ => c,
             });
             toml += "[environment]\nimage = \"probe.exr\"\n";

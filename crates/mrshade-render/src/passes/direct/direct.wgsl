@@ -16,10 +16,12 @@
 @group(0) @binding(6) var gbuffer_emission_occlusion: texture_2d<f32>;
 @group(0) @binding(7) var gbuffer_flags: texture_2d<u32>;
 // With the `dir` method (shadow_params.size.z == 1): indirect light of both solutions and the
-// environment visibility sums (Σw·V_rv, Σw·V_r, Σw), merged and smoothed.
+// environment visibility sums per channel (Σw_c·V_rv, Σw_c·V_r, Σw_c), merged and smoothed.
 @group(0) @binding(8) var indirect_rv: texture_2d<f32>;
 @group(0) @binding(9) var indirect_r: texture_2d<f32>;
-@group(0) @binding(10) var indirect_env: texture_2d<f32>;
+@group(0) @binding(10) var indirect_env_rv: texture_2d<f32>;
+@group(0) @binding(11) var indirect_env_r: texture_2d<f32>;
+@group(0) @binding(12) var indirect_env_weight: texture_2d<f32>;
 
 @group(1) @binding(0) var<storage, read> materials: array<Material>;
 @group(1) @binding(1) var<storage, read> lights: array<Light>;
@@ -62,6 +64,11 @@ fn refracted_probe(s: Surface, m: Material) -> vec3f {
     return t * (vec3f(1.0) - f) * s.base_color * transmittance * env_radiance_at(frame, dir, s.roughness);
 }
 
+// Σw_c·V / Σw_c per channel; 1 where no environment VPL reached the pixel.
+fn visibility_ratio(visible: vec3f, weight: vec3f) -> vec3f {
+    return select(vec3f(1.0), visible / weight, weight > vec3f(0.0));
+}
+
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (any(id.xy >= frame.size.xy)) { return; }
@@ -96,11 +103,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let probe = env_shading(frame, s, refracted_probe(s, m));
     if (shadow_params.size.z == 1u) {
         // DIR: the probe's light shadowed by the environment VPLs' visibility ratios, plus the
-        // VPLs' indirect light (whose L_r already carries r(p)).
-        let e = textureLoad(indirect_env, pixel, 0).xyz;
-        let ratio = select(vec2f(1.0), e.xy / e.z, e.z > 0.0);
-        l_rv += probe * ratio.x + s.emission + textureLoad(indirect_rv, pixel, 0).rgb;
-        l_r += (probe * ratio.y + s.emission) * r_p + textureLoad(indirect_r, pixel, 0).rgb;
+        // VPLs' indirect light (whose L_r already carries r(p)). The ratios are per channel: a
+        // shadow has the color of the light it blocks (a virtual object that hides the blue
+        // sky but not the warm sun casts a bluish shadow), not that of the probe's whole light.
+        let weight = textureLoad(indirect_env_weight, pixel, 0).rgb;
+        let ratio_rv = visibility_ratio(textureLoad(indirect_env_rv, pixel, 0).rgb, weight);
+        let ratio_r = visibility_ratio(textureLoad(indirect_env_r, pixel, 0).rgb, weight);
+        l_rv += probe * ratio_rv + s.emission + textureLoad(indirect_rv, pixel, 0).rgb;
+        l_r += (probe * ratio_r + s.emission) * r_p + textureLoad(indirect_r, pixel, 0).rgb;
     } else {
         l_rv += probe + s.emission;
         l_r += (probe + s.emission) * r_p;

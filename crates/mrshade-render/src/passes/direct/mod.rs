@@ -106,6 +106,8 @@ impl DirectPass {
                 bind::texture(8, cs, unfilterable, d2),
                 bind::texture(9, cs, unfilterable, d2),
                 bind::texture(10, cs, unfilterable, d2),
+                bind::texture(11, cs, unfilterable, d2),
+                bind::texture(12, cs, unfilterable, d2),
             ],
         );
         let lights_layout = bind::layout(
@@ -146,7 +148,9 @@ impl DirectPass {
                     TextureView(&gbuffer.flags.view),
                     TextureView(&indirect.light.rv.view),
                     TextureView(&indirect.light.r.view),
-                    TextureView(&indirect.env.view),
+                    TextureView(&indirect.env.rv.view),
+                    TextureView(&indirect.env.r.view),
+                    TextureView(&indirect.env_weight.view),
                 ],
             ),
             bind::group(

@@ -17,11 +17,15 @@ struct FilterParams {
 
 @group(1) @binding(0) var in_rv: texture_2d<f32>;
 @group(1) @binding(1) var in_r: texture_2d<f32>;
-@group(1) @binding(2) var in_env: texture_2d<f32>;
+@group(1) @binding(2) var in_env_rv: texture_2d<f32>;
+@group(1) @binding(3) var in_env_r: texture_2d<f32>;
+@group(1) @binding(4) var in_env_weight: texture_2d<f32>;
 
 @group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(2) var out_env: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(2) var out_env_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(3) var out_env_r: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(4) var out_env_weight: texture_storage_2d<rgba16float, write>;
 
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
@@ -35,14 +39,18 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (depth == 0.0 || params.info.y == 0u) {
         textureStore(out_rv, pixel, textureLoad(in_rv, pixel, 0));
         textureStore(out_r, pixel, textureLoad(in_r, pixel, 0));
-        textureStore(out_env, pixel, textureLoad(in_env, pixel, 0));
+        textureStore(out_env_rv, pixel, textureLoad(in_env_rv, pixel, 0));
+        textureStore(out_env_r, pixel, textureLoad(in_env_r, pixel, 0));
+        textureStore(out_env_weight, pixel, textureLoad(in_env_weight, pixel, 0));
         return;
     }
     let size = i32(params.info.x);
     let lo = -size / 2;
     var rv = vec4f(0.0);
     var r = vec4f(0.0);
-    var env = vec4f(0.0);
+    var env_rv = vec4f(0.0);
+    var env_r = vec4f(0.0);
+    var env_weight = vec4f(0.0);
     var total = 0.0;
     for (var dy = lo; dy < lo + size; dy++) {
         for (var dx = lo; dx < lo + size; dx++) {
@@ -58,12 +66,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             if (w <= 0.0) { continue; }
             rv += w * textureLoad(in_rv, q, 0);
             r += w * textureLoad(in_r, q, 0);
-            env += w * textureLoad(in_env, q, 0);
+            env_rv += w * textureLoad(in_env_rv, q, 0);
+            env_r += w * textureLoad(in_env_r, q, 0);
+            env_weight += w * textureLoad(in_env_weight, q, 0);
             total += w;
         }
     }
     let inv = 1.0 / max(total, 1e-8);
     textureStore(out_rv, pixel, rv * inv);
     textureStore(out_r, pixel, r * inv);
-    textureStore(out_env, pixel, env * inv);
+    textureStore(out_env_rv, pixel, env_rv * inv);
+    textureStore(out_env_r, pixel, env_r * inv);
+    textureStore(out_env_weight, pixel, env_weight * inv);
 }

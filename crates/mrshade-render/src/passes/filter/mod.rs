@@ -3,7 +3,7 @@
 //! normals are kept for the confidence test.
 
 use crate::passes::gbuffer::GBuffer;
-use crate::passes::indirect::IndirectBuffers;
+use crate::passes::indirect::{self, IndirectBuffers};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
 use mrshade_core::settings::{DirSettings, TemporalSettings};
@@ -97,7 +97,7 @@ impl FilterPass {
         input: &IndirectBuffers,
     ) -> Self {
         let device = &ctx.device;
-        let size = input.env.size();
+        let size = input.size();
         let history = [
             IndirectBuffers::new(device, "temporal/history0", size),
             IndirectBuffers::new(device, "temporal/history1", size),
@@ -140,8 +140,9 @@ impl FilterPass {
             "temporal/gbuffer_layout",
             &[bind::uniform(0, cs), bind::uniform(1, cs), tex(2), tex(3), tex(4), tex(5)],
         );
-        let inputs6: Vec<wgpu::BindGroupLayoutEntry> = (0..6).map(tex).collect();
-        let temporal_in_layout = bind::layout(device, "temporal/in_layout", &inputs6);
+        let mut temporal_inputs = IndirectBuffers::sampled_entries(0).to_vec();
+        temporal_inputs.extend(IndirectBuffers::sampled_entries(indirect::TARGETS as u32));
+        let temporal_in_layout = bind::layout(device, "temporal/in_layout", &temporal_inputs);
         let filter_layout = bind::layout(
             device,
             "filter/gbuffer_layout",
@@ -154,7 +155,7 @@ impl FilterPass {
                 bind::storage_texture(5, gbuffer.normal_roughness.texture.format()),
             ],
         );
-        let in_layout = bind::layout(device, "filter/in_layout", &IndirectBuffers::sampled_entries());
+        let in_layout = bind::layout(device, "filter/in_layout", &IndirectBuffers::sampled_entries(0));
         let out_layout = bind::layout(device, "filter/out_layout", &IndirectBuffers::storage_entries());
         use wgpu::BindingResource::TextureView;
         let groups = [0usize, 1].map(|parity| {
@@ -264,9 +265,9 @@ mod tests {
 
     #[test]
     fn a_still_scene_accumulates_after_the_warm_up_and_only_when_asked_to() {
-        let thesis = TemporalSettings::default();
+        let thesis = TemporalSettings { static_confidence: 0.9, ..TemporalSettings::default() };
         for still in [0, 5, 50, 5000] {
-            assert_eq!(history_weight(&thesis, still), (0.9, false), "default: the thesis's c_B");
+            assert_eq!(history_weight(&thesis, still), (0.9, false), "static_confidence = c_B: the thesis's c_B");
         }
         let t = TemporalSettings { static_confidence: 0.99, ..thesis };
         assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES), (0.9, false));
@@ -275,6 +276,10 @@ mod tests {
         assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES + 19), (0.95, true));
         // …up to static_confidence.
         assert_eq!(history_weight(&t, STILL_WARMUP_FRAMES + 1000), (0.99, true));
+        // The default accumulates up to 0.996 (a window of about 250 frames).
+        let default = TemporalSettings::default();
+        assert_eq!(history_weight(&default, 0), (0.9, false));
+        assert_eq!(history_weight(&default, 5000), (0.996, true));
         let off = TemporalSettings { enabled: false, ..t };
         assert_eq!(history_weight(&off, 1000), (0.0, false));
     }

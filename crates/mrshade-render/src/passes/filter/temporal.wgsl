@@ -35,14 +35,20 @@ struct TemporalParams {
 
 @group(1) @binding(0) var new_rv: texture_2d<f32>;
 @group(1) @binding(1) var new_r: texture_2d<f32>;
-@group(1) @binding(2) var new_env: texture_2d<f32>;
-@group(1) @binding(3) var history_rv: texture_2d<f32>;
-@group(1) @binding(4) var history_r: texture_2d<f32>;
-@group(1) @binding(5) var history_env: texture_2d<f32>;
+@group(1) @binding(2) var new_env_rv: texture_2d<f32>;
+@group(1) @binding(3) var new_env_r: texture_2d<f32>;
+@group(1) @binding(4) var new_env_weight: texture_2d<f32>;
+@group(1) @binding(5) var history_rv: texture_2d<f32>;
+@group(1) @binding(6) var history_r: texture_2d<f32>;
+@group(1) @binding(7) var history_env_rv: texture_2d<f32>;
+@group(1) @binding(8) var history_env_r: texture_2d<f32>;
+@group(1) @binding(9) var history_env_weight: texture_2d<f32>;
 
 @group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(2) var out_env: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(2) var out_env_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(3) var out_env_r: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(4) var out_env_weight: texture_storage_2d<rgba16float, write>;
 
 // Scale of the confidence on frames where geometry moved.
 const MOVING_CONFIDENCE: f32 = 0.5;
@@ -75,11 +81,18 @@ struct Window {
     hi_rv: vec4f,
     lo_r: vec4f,
     hi_r: vec4f,
-    // The environment channel's visibility ratios (Σw·V_rv / Σw, Σw·V_r / Σw): one subset of
-    // the environment VPLs may hold the sun and the next none, so Σw·V itself ranges widely
-    // over a window even where nothing is shadowed; its ratios do not.
-    lo_env: vec2f,
-    hi_env: vec2f,
+    // The environment's visibility ratios per channel (Σw_c·V_rv / Σw_c, Σw_c·V_r / Σw_c): one
+    // subset of the environment VPLs may hold the sun and the next none, so Σw_c·V itself
+    // ranges widely over a window even where nothing is shadowed; its ratios do not.
+    lo_env_rv: vec3f,
+    hi_env_rv: vec3f,
+    lo_env_r: vec3f,
+    hi_env_r: vec3f,
+}
+
+// Σw_c·V / Σw_c per channel, 1 where the weight is 0.
+fn env_ratio(visible: vec3f, weight: vec3f) -> vec3f {
+    return select(vec3f(1.0), visible / weight, weight > vec3f(0.0));
 }
 
 // Per-channel range of the new values over the I×I window around `pixel` (same surface only).
@@ -92,8 +105,10 @@ fn new_range(pixel: vec2i) -> Window {
     w.hi_rv = vec4f(-3.0e38);
     w.lo_r = w.lo_rv;
     w.hi_r = w.hi_rv;
-    w.lo_env = vec2f(3.0e38);
-    w.hi_env = vec2f(-3.0e38);
+    w.lo_env_rv = vec3f(3.0e38);
+    w.hi_env_rv = vec3f(-3.0e38);
+    w.lo_env_r = w.lo_env_rv;
+    w.hi_env_r = w.hi_env_rv;
     for (var y = 0; y < i; y++) {
         for (var x = 0; x < i; x++) {
             let q = clamp(start + vec2i(x, y), vec2i(0), vec2i(frame.size.xy) - 1);
@@ -101,14 +116,18 @@ fn new_range(pixel: vec2i) -> Window {
             if (dq == 0.0 || abs(dq - depth) > 0.05 * depth) { continue; }
             let rv = textureLoad(new_rv, q, 0);
             let r = textureLoad(new_r, q, 0);
-            let env = textureLoad(new_env, q, 0);
+            let weight = textureLoad(new_env_weight, q, 0).rgb;
             w.lo_rv = min(w.lo_rv, rv);
             w.hi_rv = max(w.hi_rv, rv);
             w.lo_r = min(w.lo_r, r);
             w.hi_r = max(w.hi_r, r);
-            if (env.z > 0.0) {
-                w.lo_env = min(w.lo_env, env.xy / env.z);
-                w.hi_env = max(w.hi_env, env.xy / env.z);
+            if (any(weight > vec3f(0.0))) {
+                let ratio_rv = env_ratio(textureLoad(new_env_rv, q, 0).rgb, weight);
+                let ratio_r = env_ratio(textureLoad(new_env_r, q, 0).rgb, weight);
+                w.lo_env_rv = min(w.lo_env_rv, ratio_rv);
+                w.hi_env_rv = max(w.hi_env_rv, ratio_rv);
+                w.lo_env_r = min(w.lo_env_r, ratio_r);
+                w.hi_env_r = max(w.hi_env_r, ratio_r);
             }
         }
     }
@@ -124,11 +143,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let q = clamp(vec2i(floor(vec2f(pixel) + 0.5 + dm.yz)), vec2i(0), vec2i(frame.size.xy) - 1);
     let new_rv_value = textureLoad(new_rv, pixel, 0);
     let new_r_value = textureLoad(new_r, pixel, 0);
-    let new_env_value = textureLoad(new_env, pixel, 0);
+    let new_env_rv_value = textureLoad(new_env_rv, pixel, 0);
+    let new_env_r_value = textureLoad(new_env_r, pixel, 0);
+    let new_env_weight_value = textureLoad(new_env_weight, pixel, 0);
+    let old_env_weight = textureLoad(history_env_weight, q, 0);
     if (c == 0.0 || params.block.y == 0u) {
         textureStore(out_rv, pixel, mix(new_rv_value, textureLoad(history_rv, q, 0), c));
         textureStore(out_r, pixel, mix(new_r_value, textureLoad(history_r, q, 0), c));
-        textureStore(out_env, pixel, mix(new_env_value, textureLoad(history_env, q, 0), c));
+        textureStore(out_env_rv, pixel, mix(new_env_rv_value, textureLoad(history_env_rv, q, 0), c));
+        textureStore(out_env_r, pixel, mix(new_env_r_value, textureLoad(history_env_r, q, 0), c));
+        textureStore(out_env_weight, pixel, mix(new_env_weight_value, old_env_weight, c));
         return;
     }
     // While geometry moves, shadows and bounces move over still surfaces, whose history the
@@ -138,11 +162,18 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let w = new_range(pixel);
     let old_rv = clamp(textureLoad(history_rv, q, 0), w.lo_rv, w.hi_rv);
     let old_r = clamp(textureLoad(history_r, q, 0), w.lo_r, w.hi_r);
-    var old_env = textureLoad(history_env, q, 0);
-    if (old_env.z > 0.0 && w.lo_env.x <= w.hi_env.x) {
-        old_env = vec4f(clamp(old_env.xy / old_env.z, w.lo_env, w.hi_env) * old_env.z, old_env.zw);
+    // The history's visibility sums with their ratios clamped to the window's range; the
+    // weights (the ratios' denominators, the probe's light) are kept.
+    var old_env_rv = textureLoad(history_env_rv, q, 0);
+    var old_env_r = textureLoad(history_env_r, q, 0);
+    if (w.lo_env_rv.x <= w.hi_env_rv.x) {
+        let weight = old_env_weight.rgb;
+        old_env_rv = vec4f(clamp(env_ratio(old_env_rv.rgb, weight), w.lo_env_rv, w.hi_env_rv) * weight, 1.0);
+        old_env_r = vec4f(clamp(env_ratio(old_env_r.rgb, weight), w.lo_env_r, w.hi_env_r) * weight, 1.0);
     }
     textureStore(out_rv, pixel, mix(new_rv_value, old_rv, c_moving));
     textureStore(out_r, pixel, mix(new_r_value, old_r, c_moving));
-    textureStore(out_env, pixel, mix(new_env_value, old_env, c_moving));
+    textureStore(out_env_rv, pixel, mix(new_env_rv_value, old_env_rv, c_moving));
+    textureStore(out_env_r, pixel, mix(new_env_r_value, old_env_r, c_moving));
+    textureStore(out_env_weight, pixel, mix(new_env_weight_value, old_env_weight, c_moving));
 }

@@ -16,44 +16,58 @@ use wgpu::util::DeviceExt;
 /// Format of the indirect buffers.
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// Indirect light of both solutions and the environment visibility sums
-/// (Σw·V_rv, Σw·V_r, Σw).
+/// Indirect light of both solutions and the environment visibility sums, per color channel
+/// (rgb: Σw_c·V_rv, Σw_c·V_r and Σw_c, with w_c = a VPL's power in channel c · cos θ).
 pub struct IndirectBuffers {
     /// Indirect `L_rv` and `L_r`.
     pub light: Differential<Target>,
-    /// Environment visibility sums.
-    pub env: Target,
+    /// Environment visibility sums Σw_c·V of both solutions.
+    pub env: Differential<Target>,
+    /// Environment weight sums Σw_c, the ratios' denominators.
+    pub env_weight: Target,
 }
 
+/// Number of targets in [`IndirectBuffers`].
+pub const TARGETS: usize = 5;
+
 impl IndirectBuffers {
-    /// Three `FORMAT` targets named `<label>/rv`, `/r`, `/env`.
+    /// `FORMAT` targets named `<label>/rv`, `/r`, `/env_rv`, `/env_r`, `/env_weight`.
     pub fn new(device: &wgpu::Device, label: &str, size: (u32, u32)) -> Self {
         let usage =
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
         let t = |name: &str| Target::new_2d(device, &format!("{label}/{name}"), size, FORMAT, usage);
-        Self { light: Differential { rv: t("rv"), r: t("r") }, env: t("env") }
+        Self {
+            light: Differential { rv: t("rv"), r: t("r") },
+            env: Differential { rv: t("env_rv"), r: t("env_r") },
+            env_weight: t("env_weight"),
+        }
     }
 
-    /// The three targets in binding order (rv, r, env).
-    pub fn all(&self) -> [&Target; 3] {
-        [&self.light.rv, &self.light.r, &self.env]
+    /// The targets in binding order (rv, r, env_rv, env_r, env_weight).
+    pub fn all(&self) -> [&Target; TARGETS] {
+        [&self.light.rv, &self.light.r, &self.env.rv, &self.env.r, &self.env_weight]
     }
 
-    /// Layout entries of the three as sampled textures from binding 0.
-    pub fn sampled_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
+    /// Layout entries of the targets as sampled textures from binding `first`.
+    pub fn sampled_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; TARGETS] {
         let cs = wgpu::ShaderStages::COMPUTE;
         let t = wgpu::TextureSampleType::Float { filterable: false };
-        [0, 1, 2].map(|b| bind::texture(b, cs, t, wgpu::TextureViewDimension::D2))
+        std::array::from_fn(|i| bind::texture(first + i as u32, cs, t, wgpu::TextureViewDimension::D2))
     }
 
-    /// Layout entries of the three as storage textures from binding 0.
-    pub fn storage_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
-        [0, 1, 2].map(|b| bind::storage_texture(b, FORMAT))
+    /// Layout entries of the targets as storage textures from binding 0.
+    pub fn storage_entries() -> [wgpu::BindGroupLayoutEntry; TARGETS] {
+        std::array::from_fn(|i| bind::storage_texture(i as u32, FORMAT))
     }
 
-    /// The bind group resources of the three.
-    pub fn resources(&self) -> [wgpu::BindingResource<'_>; 3] {
+    /// The bind group resources of the targets.
+    pub fn resources(&self) -> [wgpu::BindingResource<'_>; TARGETS] {
         self.all().map(|t| wgpu::BindingResource::TextureView(&t.view))
+    }
+
+    /// Size of the targets.
+    pub fn size(&self) -> (u32, u32) {
+        self.env_weight.size()
     }
 }
 
@@ -173,7 +187,7 @@ impl IndirectPass {
             SHADER,
             &[&scene_layout, &vpl_layout, &out_layout, &previous_layout],
         );
-        Self { pipeline, groups, size: out.env.size() }
+        Self { pipeline, groups, size: out.size() }
     }
 
     /// Shades every pixel with its VPL subset of buffer `parity`.
