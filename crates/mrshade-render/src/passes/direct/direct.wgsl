@@ -64,11 +64,6 @@ fn refracted_probe(s: Surface, m: Material) -> vec3f {
     return t * (vec3f(1.0) - f) * s.base_color * transmittance * env_radiance_at(frame, dir, s.roughness);
 }
 
-// Σw_c·V / Σw_c per channel; 1 where no environment VPL reached the pixel.
-fn visibility_ratio(visible: vec3f, weight: vec3f) -> vec3f {
-    return select(vec3f(1.0), visible / weight, weight > vec3f(0.0));
-}
-
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (any(id.xy >= frame.size.xy)) { return; }

@@ -209,6 +209,7 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/brdf.wgsl",
     "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/env_visibility.wgsl",
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/shadow.wgsl",
     "direct.wgsl",

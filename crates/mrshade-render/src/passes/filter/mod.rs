@@ -255,7 +255,8 @@ impl FilterPass {
 }
 
 /// The temporal module.
-pub const TEMPORAL_SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "temporal.wgsl");
+pub const TEMPORAL_SHADER: &str =
+    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/env_visibility.wgsl", "temporal.wgsl");
 /// The filter module.
 pub const FILTER_SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "filter.wgsl");
 

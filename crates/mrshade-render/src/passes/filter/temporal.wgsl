@@ -90,10 +90,6 @@ struct Window {
     hi_env_r: vec3f,
 }
 
-// Σw_c·V / Σw_c per channel, 1 where the weight is 0.
-fn env_ratio(visible: vec3f, weight: vec3f) -> vec3f {
-    return select(vec3f(1.0), visible / weight, weight > vec3f(0.0));
-}
 
 // Per-channel range of the new values over the I×I window around `pixel` (same surface only).
 fn new_range(pixel: vec2i) -> Window {
@@ -122,8 +118,8 @@ fn new_range(pixel: vec2i) -> Window {
             w.lo_r = min(w.lo_r, r);
             w.hi_r = max(w.hi_r, r);
             if (any(weight > vec3f(0.0))) {
-                let ratio_rv = env_ratio(textureLoad(new_env_rv, q, 0).rgb, weight);
-                let ratio_r = env_ratio(textureLoad(new_env_r, q, 0).rgb, weight);
+                let ratio_rv = visibility_ratio(textureLoad(new_env_rv, q, 0).rgb, weight);
+                let ratio_r = visibility_ratio(textureLoad(new_env_r, q, 0).rgb, weight);
                 w.lo_env_rv = min(w.lo_env_rv, ratio_rv);
                 w.hi_env_rv = max(w.hi_env_rv, ratio_rv);
                 w.lo_env_r = min(w.lo_env_r, ratio_r);
@@ -168,8 +164,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     var old_env_r = textureLoad(history_env_r, q, 0);
     if (w.lo_env_rv.x <= w.hi_env_rv.x) {
         let weight = old_env_weight.rgb;
-        old_env_rv = vec4f(clamp(env_ratio(old_env_rv.rgb, weight), w.lo_env_rv, w.hi_env_rv) * weight, 1.0);
-        old_env_r = vec4f(clamp(env_ratio(old_env_r.rgb, weight), w.lo_env_r, w.hi_env_r) * weight, 1.0);
+        old_env_rv = vec4f(clamp(visibility_ratio(old_env_rv.rgb, weight), w.lo_env_rv, w.hi_env_rv) * weight, 1.0);
+        old_env_r = vec4f(clamp(visibility_ratio(old_env_r.rgb, weight), w.lo_env_r, w.hi_env_r) * weight, 1.0);
     }
     textureStore(out_rv, pixel, mix(new_rv_value, old_rv, c_moving));
     textureStore(out_r, pixel, mix(new_r_value, old_r, c_moving));
