@@ -1,4 +1,6 @@
-//! FLIP between 8-bit sRGB images (LDR FLIP, default viewing conditions: the benchmark's metric).
+//! FLIP between 8-bit sRGB images (LDR FLIP, default viewing conditions), as the mean FLIP
+//! error. (The benchmark's score.py averages FLIP's magma heat map instead: see
+//! `mrshade_eval::metrics`.)
 
 /// Mean FLIP error of `test` against `reference` (both RGB8, `width × height`).
 pub fn mean(reference: &[u8], test: &[u8], width: u32, height: u32) -> f32 {

@@ -35,6 +35,8 @@ pub enum Command {
     Adapters,
     /// Print what a session holds: objects, lights, flags, warnings.
     Info(InfoArgs),
+    /// Score an image against a reference: FLIP, PSNR, RMSE, SSIM (over a mask if given).
+    Compare(CompareArgs),
 }
 
 /// How to load a session and what to change in it.
@@ -125,4 +127,24 @@ pub struct InfoArgs {
     /// The session and its overrides.
     #[command(flatten)]
     pub session: SessionArgs,
+}
+
+/// `mrshade compare`.
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// The reference image (PNG or JPEG, 8-bit sRGB), e.g. a path-traced answer.
+    #[arg(value_name = "REFERENCE")]
+    pub reference: PathBuf,
+    /// The image to score, of the same size.
+    #[arg(value_name = "TEST")]
+    pub test: PathBuf,
+    /// Score only where this image (same size) is not black, e.g. a changed-region mask.
+    #[arg(long, value_name = "MASK.png")]
+    pub mask: Option<PathBuf>,
+    /// Write the FLIP error map here as a heat map (magma: black = equal, yellow = different).
+    #[arg(long, value_name = "OUT.png")]
+    pub heatmap: Option<PathBuf>,
+    /// Print the scores as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
 }

@@ -40,6 +40,7 @@ fn help_everywhere() {
         &["bench", "--help"],
         &["info", "--help"],
         &["adapters", "--help"],
+        &["compare", "--help"],
     ] {
         let o = mrshade(args);
         assert!(o.status.success(), "{args:?}");
@@ -174,4 +175,37 @@ fn info_lists_objects_and_flags() {
             && out.contains("light      real     desk-lamp"),
         "{out}"
     );
+}
+
+/// Writes a `w × h` RGB8 PNG whose pixel (x, y) is `f(x, y)`.
+fn png(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> [u8; 3]) {
+    let img = image::RgbImage::from_fn(w, h, |x, y| image::Rgb(f(x, y)));
+    img.save(path).unwrap();
+}
+
+#[test]
+fn compare_scores_images_and_names_misfits() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    png(Path::new(&p("a.png")), 32, 16, |x, y| [(x * 8) as u8, (y * 16) as u8, 90]);
+    png(Path::new(&p("b.png")), 32, 16, |x, y| [(x * 8) as u8, (y * 16) as u8, if x < 16 { 90 } else { 100 }]);
+    png(Path::new(&p("left.png")), 32, 16, |x, _| if x < 16 { [255; 3] } else { [0; 3] });
+    png(Path::new(&p("small.png")), 16, 16, |_, _| [0; 3]);
+    // Identical images.
+    let o = mrshade(&["compare", &p("a.png"), &p("a.png")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("FLIP 0.0000"), "{}", String::from_utf8_lossy(&o.stdout));
+    // Blue differs by 10 on the right half only: RMSE over the left half is 0, over all > 0.
+    let o = mrshade(&["compare", &p("a.png"), &p("b.png"), "--json", "--heatmap", &p("heat.png")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let all: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(all["rmse"].as_f64().unwrap() > 0.0 && all["flip"].as_f64().unwrap() > 0.0, "{all}");
+    assert_eq!(image::open(p("heat.png")).unwrap().to_rgb8().dimensions(), (32, 16));
+    let o = mrshade(&["compare", &p("a.png"), &p("b.png"), "--json", "--mask", &p("left.png")]);
+    let left: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((left["rmse"].as_f64(), left["pixels"].as_u64()), (Some(0.0), Some(256)), "{left}");
+    // Misfits: one line each, naming the cause.
+    assert_one_line_error(&mrshade(&["compare", &p("a.png"), &p("small.png")]), "32×16 and 16×16");
+    assert_one_line_error(&mrshade(&["compare", &p("a.png"), &p("a.png"), "--mask", &p("small.png")]), "mask");
+    assert_one_line_error(&mrshade(&["compare", &p("a.png"), &p("missing.png")]), "missing.png");
 }

@@ -1,6 +1,7 @@
 //! The subcommands.
 
 mod bench;
+mod compare;
 mod info;
 mod render;
 
@@ -47,6 +48,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Bench(args) => bench::bench(&args, &gpu, log),
         Command::Adapters => info::adapters(),
         Command::Info(args) => info::info(&args, log),
+        Command::Compare(args) => compare::compare(&args),
     }
 }
 

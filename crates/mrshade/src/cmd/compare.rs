@@ -1,0 +1,61 @@
+//! `mrshade compare`: how far an image is from a reference (issue 4's metrics).
+
+use crate::args::CompareArgs;
+use anyhow::{Context, Result, bail};
+use mrshade_eval::metrics::{self, Rgb8};
+use std::path::Path;
+
+/// Prints FLIP, PSNR, RMSE and SSIM of `args.test` against `args.reference`.
+pub fn compare(args: &CompareArgs) -> Result<()> {
+    let reference = load(&args.reference)?;
+    let test = load(&args.test)?;
+    let mask = match &args.mask {
+        Some(path) => {
+            let m = load(path)?;
+            if (m.width, m.height) != (reference.width, reference.height) {
+                bail!(
+                    "{}: the mask is {}×{}, the images {}×{}",
+                    path.display(),
+                    m.width,
+                    m.height,
+                    reference.width,
+                    reference.height
+                );
+            }
+            Some(m.rgb.chunks_exact(3).map(|p| p.iter().any(|&c| c > 0)).collect::<Vec<bool>>())
+        }
+        None => None,
+    };
+    let scores = metrics::compare(&reference, &test, mask.as_deref()).map_err(anyhow::Error::msg)?;
+    if let Some(path) = &args.heatmap {
+        let map = metrics::flip_heatmap(&reference, &test);
+        image::save_buffer(path, &map.rgb, map.width, map.height, image::ExtendedColorType::Rgb8)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if args.json {
+        // JSON has no infinity: identical images get a PSNR of null.
+        let psnr = if scores.psnr.is_finite() { serde_json::json!(scores.psnr) } else { serde_json::Value::Null };
+        let json = serde_json::json!({
+            "flip": scores.flip, "flip_heatmap_mean": scores.flip_heatmap_mean, "psnr_db": psnr, "rmse": scores.rmse, "ssim": scores.ssim, "pixels": scores.pixels,
+        });
+        println!("{json}");
+    } else {
+        println!(
+            "FLIP {:.4} (heat-map mean {:.4}, as the benchmark's score.py)  PSNR {:.2} dB  RMSE {:.4}  SSIM {:.4}  ({} pixels{})",
+            scores.flip,
+            scores.flip_heatmap_mean,
+            scores.psnr,
+            scores.rmse,
+            scores.ssim,
+            scores.pixels,
+            if mask.is_some() { " in the mask" } else { "" }
+        );
+    }
+    Ok(())
+}
+
+/// An 8-bit sRGB image (alpha dropped).
+fn load(path: &Path) -> Result<Rgb8> {
+    let img = image::open(path).with_context(|| format!("cannot read image {}", path.display()))?.to_rgb8();
+    Ok(Rgb8 { width: img.width(), height: img.height(), rgb: img.into_raw() })
+}
