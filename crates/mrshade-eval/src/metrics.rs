@@ -38,9 +38,18 @@ pub struct Scores {
     pub pixels: usize,
 }
 
+/// The scores and FLIP's heat map of `test` against `reference`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comparison {
+    /// The scores (over the mask if one was given).
+    pub scores: Scores,
+    /// FLIP's error map as a magma heat map (RGB8, the whole image), as FLIP's own tool shows it.
+    pub heatmap: Rgb8,
+}
+
 /// Compares `test` with `reference` over `mask` (row-major, one flag per pixel; `None`: every
 /// pixel). Errors name what does not fit: sizes, an empty mask.
-pub fn compare(reference: &Rgb8, test: &Rgb8, mask: Option<&[bool]>) -> Result<Scores, String> {
+pub fn compare(reference: &Rgb8, test: &Rgb8, mask: Option<&[bool]>) -> Result<Comparison, String> {
     let (w, h) = (reference.width, reference.height);
     if (test.width, test.height) != (w, h) {
         return Err(format!("the images differ in size: {w}×{h} and {}×{}", test.width, test.height));
@@ -65,34 +74,21 @@ pub fn compare(reference: &Rgb8, test: &Rgb8, mask: Option<&[bool]>) -> Result<S
         .map(|(a, b)| a.iter().zip(b).map(|(x, y)| ((*x as f32 - *y as f32) / 255.0).powi(2)).sum::<f32>() / 3.0)
         .collect();
     let mse = mean(&squared);
-    let flip = flip_image(reference, test);
-    let heat = flip.apply_color_lut(&nv_flip::magma_lut()).to_vec();
-    let heat: Vec<f32> = heat.chunks_exact(3).map(|p| p.iter().map(|&c| c as f32).sum::<f32>() / 765.0).collect();
-    Ok(Scores {
+    let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.rgb);
+    let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.rgb);
+    let flip = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let heatmap = Rgb8 { width: w, height: h, rgb: flip.apply_color_lut(&nv_flip::magma_lut()).to_vec() };
+    let heat: Vec<f32> =
+        heatmap.rgb.chunks_exact(3).map(|p| p.iter().map(|&c| c as f32).sum::<f32>() / 765.0).collect();
+    let scores = Scores {
         flip: mean(&flip.to_vec()),
         flip_heatmap_mean: mean(&heat),
         psnr: if mse == 0.0 { f64::INFINITY } else { -10.0 * mse.log10() },
         rmse: mse.sqrt(),
         ssim: mean(&ssim_map(reference, test)),
         pixels,
-    })
-}
-
-/// The FLIP error of every pixel.
-pub fn flip_map(reference: &Rgb8, test: &Rgb8) -> Vec<f32> {
-    flip_image(reference, test).to_vec()
-}
-
-/// The FLIP error map as a magma heat map (RGB8), as FLIP's own tool shows it.
-pub fn flip_heatmap(reference: &Rgb8, test: &Rgb8) -> Rgb8 {
-    let rgb = flip_image(reference, test).apply_color_lut(&nv_flip::magma_lut()).to_vec();
-    Rgb8 { width: reference.width, height: reference.height, rgb }
-}
-
-fn flip_image(reference: &Rgb8, test: &Rgb8) -> nv_flip::FlipImageFloat {
-    let r = nv_flip::FlipImageRgb8::with_data(reference.width, reference.height, &reference.rgb);
-    let t = nv_flip::FlipImageRgb8::with_data(test.width, test.height, &test.rgb);
-    nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE)
+    };
+    Ok(Comparison { scores, heatmap })
 }
 
 /// Half-width of SSIM's Gaussian window (11×11).
@@ -171,7 +167,7 @@ mod tests {
     #[test]
     fn identical_images_score_perfectly() {
         let a = noise(24, 16, 7);
-        let s = compare(&a, &a, None).unwrap();
+        let s = compare(&a, &a, None).unwrap().scores;
         assert_eq!((s.flip, s.rmse, s.pixels), (0.0, 0.0, 24 * 16));
         // The magma map's darkest entry is (0, 0, 4).
         assert!((s.flip_heatmap_mean - 4.0 / 765.0).abs() < 1e-9, "heat map mean {}", s.flip_heatmap_mean);
@@ -184,7 +180,7 @@ mod tests {
         // 100 vs 110 everywhere: RMSE 10/255, PSNR −20 log10(10/255); flat images have no
         // variance, so SSIM is the luminance term (2ab + C1) / (a² + b² + C1).
         let (a, b) = (flat(16, 16, [100; 3]), flat(16, 16, [110; 3]));
-        let s = compare(&a, &b, None).unwrap();
+        let s = compare(&a, &b, None).unwrap().scores;
         let d = 10.0 / 255.0;
         assert!((s.rmse - d).abs() < 1e-6, "rmse {}", s.rmse);
         assert!((s.psnr + 20.0 * f64::log10(d)).abs() < 1e-4, "psnr {}", s.psnr);
@@ -206,8 +202,8 @@ mod tests {
         }
         let left: Vec<bool> = (0..16 * 8).map(|i| i % 16 < 4).collect();
         let right: Vec<bool> = (0..16 * 8).map(|i| i % 16 >= 12).collect();
-        let l = compare(&a, &b, Some(&left)).unwrap();
-        let r = compare(&a, &b, Some(&right)).unwrap();
+        let l = compare(&a, &b, Some(&left)).unwrap().scores;
+        let r = compare(&a, &b, Some(&right)).unwrap().scores;
         assert_eq!((l.rmse, l.pixels), (0.0, 32));
         assert!((r.rmse - 120.0 / 255.0).abs() < 1e-6, "rmse {}", r.rmse);
         assert!(r.flip > 0.5 && l.flip < r.flip, "flip {} / {}", l.flip, r.flip);
@@ -224,7 +220,7 @@ mod tests {
     #[test]
     fn the_heat_map_has_the_image_size() {
         let (a, b) = (noise(10, 6, 1), noise(10, 6, 2));
-        let m = flip_heatmap(&a, &b);
+        let m = compare(&a, &b, None).unwrap().heatmap;
         assert_eq!((m.width, m.height, m.rgb.len()), (10, 6, 180));
     }
 }

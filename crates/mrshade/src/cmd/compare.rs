@@ -1,7 +1,7 @@
 //! `mrshade compare`: how far an image is from a reference (issue 4's metrics).
 
 use crate::args::CompareArgs;
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use mrshade_eval::metrics::{self, Rgb8};
 use std::path::Path;
 
@@ -10,26 +10,13 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     let reference = load(&args.reference)?;
     let test = load(&args.test)?;
     let mask = match &args.mask {
-        Some(path) => {
-            let m = load(path)?;
-            if (m.width, m.height) != (reference.width, reference.height) {
-                bail!(
-                    "{}: the mask is {}×{}, the images {}×{}",
-                    path.display(),
-                    m.width,
-                    m.height,
-                    reference.width,
-                    reference.height
-                );
-            }
-            Some(m.rgb.chunks_exact(3).map(|p| p.iter().any(|&c| c > 0)).collect::<Vec<bool>>())
-        }
+        Some(path) => Some(load(path)?.rgb.chunks_exact(3).map(|p| p.iter().any(|&c| c > 0)).collect::<Vec<bool>>()),
         None => None,
     };
-    let scores = metrics::compare(&reference, &test, mask.as_deref()).map_err(anyhow::Error::msg)?;
+    let metrics::Comparison { scores, heatmap } = metrics::compare(&reference, &test, mask.as_deref())
+        .map_err(|e| anyhow::anyhow!("{} against {}: {e}", args.test.display(), args.reference.display()))?;
     if let Some(path) = &args.heatmap {
-        let map = metrics::flip_heatmap(&reference, &test);
-        image::save_buffer(path, &map.rgb, map.width, map.height, image::ExtendedColorType::Rgb8)
+        image::save_buffer(path, &heatmap.rgb, heatmap.width, heatmap.height, image::ExtendedColorType::Rgb8)
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     if args.json {

@@ -10,12 +10,12 @@
 // dropped at once. ε_i alone (w_i = 0.025) lets the history outlive such a change by many
 // frames, a visible trail. Static frames keep the plain smoothing: the range of one frame's
 // interleaved values is noisy, and clamping to it costs accuracy where nothing changed.
-// Also beyond the thesis, opt-in (dir.temporal.static_confidence > c_B): once nothing has
-// moved for a few frames the CPU raises c_B toward a running mean over the still frames
-// (filter/mod.rs, `history_weight`) and ε_i is left out, as a still scene's only change from
-// frame to frame is the VPLs' noise. With 256 VPLs that noise is low-frequency (a VPL near a
-// surface lights a blob); c_B = 0.9 averages about 19 frames' VPLs, too few for a still
-// Cornell box (region FLIP 0.105 on a 48-frame still; 0.079 with a 100-frame window).
+// Also beyond the thesis (on by default; off when dir.temporal.static_confidence ≤ c_B):
+// once nothing has moved for a few frames the CPU raises c_B toward a running mean over the
+// still frames (filter/mod.rs, `history_weight`) and ε_i is left out, as a still scene's only
+// change from frame to frame is the VPLs' noise. With 256 VPLs that noise is low-frequency (a
+// VPL near a surface lights a blob); c_B = 0.9 averages about 19 frames' VPLs, too few for a
+// still Cornell box (region FLIP 0.107 on a 48-frame still; 0.082 at 256 frames).
 
 struct TemporalParams {
     // w_p (x, y in [0, 1] screen units, reversed depth), w_n
