@@ -142,6 +142,10 @@ fn set_overrides_are_as_strict_as_the_file() {
     assert!(error(&path, &set(&["shadows.resolution=5"])).contains("shadows.resolution"));
     assert!(error(&path, &set(&["no-equals-sign"])).contains("KEY=VALUE"));
     assert!(error(&path, &set(&["composite.mode=\"multiply\""])).contains("multiply"));
+    // A still's frame count (default 256 for dir) is bounded like the file's.
+    assert!(error(&path, &set(&["output.frames=0"])).contains("frames must be between 1 and 10000, got 0"));
+    assert!(error(&path, &set(&["output.frames=10001"])).contains("got 10001"));
+    assert_eq!(Session::load(&path, &set(&["output.frames=12"])).unwrap().output.frames, 12);
 }
 
 #[test]
