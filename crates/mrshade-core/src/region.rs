@@ -7,7 +7,7 @@
 const BOX_RADIUS: i64 = 3;
 /// Threshold on the filtered mean absolute difference, in 8-bit steps.
 const THRESHOLD: f64 = 3.0;
-/// Dilation of the mask (pixels, square).
+/// Dilation of the mask (pixels; a diamond: two steps of the 4-neighbourhood, as score.py).
 const DILATE: i64 = 2;
 
 /// The mask (row-major, `width × height`) where `answer` differs from `photo` (both RGB8).
@@ -39,10 +39,14 @@ pub fn changed_region(answer: &[u8], photo: &[u8], width: u32, height: u32) -> V
     let mut dilated = vec![false; diff.len()];
     for y in 0..h {
         for x in 0..w {
+            // score.py dilates twice by the 4-neighbourhood: a diamond, |dx| + |dy| ≤ 2.
             let hit = (-DILATE..=DILATE).any(|dy| {
                 (-DILATE..=DILATE).any(|dx| {
                     let (qx, qy) = (x + dx, y + dy);
-                    (0..w).contains(&qx) && (0..h).contains(&qy) && changed[(qy * w + qx) as usize]
+                    dx.abs() + dy.abs() <= DILATE
+                        && (0..w).contains(&qx)
+                        && (0..h).contains(&qy)
+                        && changed[(qy * w + qx) as usize]
                 })
             });
             dilated[(y * w + x) as usize] = hit;
@@ -82,8 +86,10 @@ mod tests {
         let at = |x: u32, y: u32| mask[(y * w + x) as usize];
         assert!(at(9, 9) && at(3, 9) && at(15, 9) && at(9, 3) && at(9, 15));
         assert!(!at(2, 9) && !at(16, 9) && !at(9, 2) && !at(9, 16));
-        // Corners: a window overlapping the square by one pixel (n = 1) stays below.
-        assert!(!at(2, 2));
+        // Corners: a window overlapping the square by one pixel (n = 1) stays below, and the
+        // dilation is a diamond: (6, 6) is changed (a 2×2 overlap), (5, 5) is 2 steps from
+        // it, (4, 4) is 4 steps from every changed pixel.
+        assert!(!at(2, 2) && at(5, 5) && !at(4, 4));
         assert_eq!(masked_mean(&[1.0, 2.0, 3.0], &[true, false, true]), 2.0);
         assert_eq!(masked_mean(&[1.0], &[false]), 0.0);
     }
