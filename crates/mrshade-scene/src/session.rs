@@ -18,6 +18,7 @@
 //! [composite]                   # optional: see mrshade_core::settings::CompositeSettings
 //! [shadows]                     # optional: see mrshade_core::settings::ShadowSettings
 //! [dir]                         # optional: see mrshade_core::settings::DirSettings
+//! [reference]                   # optional: see mrshade_core::settings::ReferenceSettings
 //! ```
 //! Parsing is strict: an unknown key, a wrong type, a missing file, or a photo whose aspect
 //! ratio does not match the camera is an error naming the file and the field.
@@ -25,7 +26,9 @@
 use crate::{AssetSource, Scene, gltf::load_gltf, images};
 use anyhow::{Context, Result, bail};
 use mrshade_core::HdrImage;
-use mrshade_core::settings::{CompositeSettings, DirSettings, Method, RenderSettings, ShadowSettings};
+use mrshade_core::settings::{
+    CompositeSettings, DirSettings, Method, ReferenceSettings, RenderSettings, ShadowSettings,
+};
 use serde::Deserialize;
 
 /// Largest accepted output side, in pixels.
@@ -52,6 +55,8 @@ struct SessionFile {
     shadows: ShadowSettings,
     #[serde(default)]
     dir: DirSettings,
+    #[serde(default)]
+    reference: ReferenceSettings,
 }
 
 #[derive(Deserialize)]
@@ -182,6 +187,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         composite: file.composite,
         shadows: file.shadows,
         dir: file.dir,
+        reference: file.reference,
     };
     settings.validate().map_err(anyhow::Error::msg)?;
 

@@ -6,10 +6,12 @@
 
 mod composite;
 mod dir;
+mod reference;
 mod shadows;
 
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, TemporalSettings};
+pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;
 
 use serde::{Deserialize, Serialize};
@@ -62,6 +64,8 @@ pub struct RenderSettings {
     pub shadows: ShadowSettings,
     /// The `dir` method.
     pub dir: DirSettings,
+    /// The CPU reference path tracer (`mrshade reference`).
+    pub reference: ReferenceSettings,
 }
 
 impl RenderSettings {
@@ -69,7 +73,8 @@ impl RenderSettings {
     pub fn validate(&self) -> Result<(), String> {
         self.composite.validate()?;
         self.shadows.validate()?;
-        self.dir.validate()
+        self.dir.validate()?;
+        self.reference.validate()
     }
 }
 

@@ -1,0 +1,23 @@
+//! mrshade-reference: the offline quality bar. An unbiased CPU path tracer that renders `L_rv`
+//! and `L_r` from the same light paths (differential path tracing) and composites them with the
+//! photo exactly as the real-time methods do (issue 4; Franke's grand comparison).
+//!
+//! - [`geometry`]: world-space triangles in a BVH (obvhs), queries with and without the
+//!   virtual objects;
+//! - [`bsdf`]: the glTF metallic-roughness material with specular, transmission, IOR;
+//! - [`environment`], [`lights`]: the probe (importance sampled) and punctual lights, with the
+//!   data contract's conventions;
+//! - [`integrator`]: one path scored twice;
+//! - [`render()`]: the image loop on all cores and the composite.
+
+pub mod bsdf;
+pub mod environment;
+pub mod geometry;
+pub mod integrator;
+pub mod lights;
+mod render;
+pub mod sampler;
+pub mod surface;
+mod texture;
+
+pub use render::{ReferenceImage, render};

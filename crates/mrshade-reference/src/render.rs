@@ -1,0 +1,126 @@
+//! The image loop: camera rays with box-filtered sub-pixel positions (as the benchmark's
+//! answers), rows in parallel on every core, and the differential composite.
+
+use crate::environment::EnvironmentLight;
+use crate::geometry::Geometry;
+use crate::integrator::Tracer;
+use crate::sampler::PathSampler;
+use glam::{Vec3, Vec4Swizzles};
+use mrshade_core::HdrImage;
+use mrshade_core::settings::CompositeSettings;
+use mrshade_scene::Session;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
+
+/// A finished reference render.
+#[derive(Clone, Debug)]
+pub struct ReferenceImage {
+    /// The composite: linear camera values, photo plus the α-scaled (or additive) difference
+    /// on real pixels, `exposure·L_rv` on virtual ones, mixed by virtual coverage.
+    pub composite: HdrImage,
+    /// Mean scene radiance with the virtual content, over all samples.
+    pub l_rv: HdrImage,
+    /// Mean scene radiance without it.
+    pub l_r: HdrImage,
+    /// Fraction of each pixel's camera rays whose first hit is virtual.
+    pub coverage: Vec<f32>,
+    /// Mean composite α of each pixel's real part (1 where additive).
+    pub alpha: HdrImage,
+}
+
+/// Per-pixel sums over its samples.
+#[derive(Clone, Copy, Default)]
+struct PixelSums {
+    all: [Vec3; 2],
+    real: [Vec3; 2],
+    real_count: u32,
+    virtual_rv: Vec3,
+    virtual_count: u32,
+}
+
+/// Renders `session` with its `[reference]` settings. `progress(rows_done, rows)` is called
+/// from worker threads as rows finish.
+pub fn render(session: &Session, progress: &(dyn Fn(u32, u32) + Sync)) -> ReferenceImage {
+    let settings = session.settings.reference;
+    let geometry = Geometry::new(&session.scene);
+    let environment = session.environment.as_ref().map(EnvironmentLight::new);
+    let tracer = Tracer { scene: &session.scene, geometry: &geometry, environment: environment.as_ref(), settings };
+    let (width, height) = (session.output.width, session.output.height);
+    let camera = &session.scene.cameras[session.camera];
+    let tan_half = (camera.yfov * 0.5).tan();
+    let aspect = width as f32 / height as f32;
+    let origin = camera.world_from_camera.w_axis.xyz();
+    let rows_done = AtomicU32::new(0);
+    let sums: Vec<PixelSums> = (0..height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let row: Vec<PixelSums> = (0..width)
+                .map(|x| {
+                    let pixel = y * width + x;
+                    let mut sums = PixelSums::default();
+                    for i in 0..settings.spp {
+                        let sampler = PathSampler::new(pixel, i, settings.seed);
+                        let [jx, jy] = sampler.pixel();
+                        let sx = (2.0 * (x as f32 + jx) / width as f32 - 1.0) * tan_half * aspect;
+                        let sy = (1.0 - 2.0 * (y as f32 + jy) / height as f32) * tan_half;
+                        let dir = camera.world_from_camera.transform_vector3(Vec3::new(sx, sy, -1.0)).normalize();
+                        let result = tracer.trace_camera(origin, dir, &sampler);
+                        let l = result.radiance;
+                        sums.all[0] += l.rv;
+                        sums.all[1] += l.r;
+                        if result.sees_virtual {
+                            sums.virtual_rv += l.rv;
+                            sums.virtual_count += 1;
+                        } else {
+                            sums.real[0] += l.rv;
+                            sums.real[1] += l.r;
+                            sums.real_count += 1;
+                        }
+                    }
+                    sums
+                })
+                .collect();
+            progress(rows_done.fetch_add(1, Ordering::Relaxed) + 1, height);
+            row
+        })
+        .collect();
+    finish(session, &session.settings.composite, &sums)
+}
+
+/// The composite of the per-pixel sums (TVCG Eq. 1–2, as the real-time composite pass), with
+/// α computed from each pixel's converged `L_r`, not per sample: a noisy per-sample `L_r` in
+/// the denominator would bias it.
+fn finish(session: &Session, composite: &CompositeSettings, sums: &[PixelSums]) -> ReferenceImage {
+    let (width, height) = (session.output.width, session.output.height);
+    let n = session.settings.reference.spp as f32;
+    let exposure = session.exposure;
+    let mut out = ReferenceImage {
+        composite: HdrImage::filled(width, height, [0.0; 3]),
+        l_rv: HdrImage::filled(width, height, [0.0; 3]),
+        l_r: HdrImage::filled(width, height, [0.0; 3]),
+        coverage: vec![0.0; sums.len()],
+        alpha: HdrImage::filled(width, height, [1.0; 3]),
+    };
+    for (i, s) in sums.iter().enumerate() {
+        let photo = Vec3::from(session.background.pixels[i]);
+        out.l_rv.pixels[i] = (s.all[0] / n).to_array();
+        out.l_r.pixels[i] = (s.all[1] / n).to_array();
+        let coverage = s.virtual_count as f32 / n;
+        out.coverage[i] = coverage;
+        let mut real_part = photo;
+        if s.real_count > 0 {
+            let rv = s.real[0] / s.real_count as f32;
+            let r = s.real[1] / s.real_count as f32;
+            let alpha = Vec3::from_array(std::array::from_fn(|c| composite.alpha(photo[c], exposure * r[c])));
+            real_part = photo + alpha * exposure * (rv - r);
+            out.alpha.pixels[i] = alpha.to_array();
+        }
+        let value = if s.virtual_count > 0 {
+            real_part * (1.0 - coverage) + exposure * s.virtual_rv / s.virtual_count as f32 * coverage
+        } else {
+            real_part
+        };
+        out.composite.pixels[i] = value.max(Vec3::ZERO).to_array();
+    }
+    out
+}

@@ -1,0 +1,170 @@
+//! Small scenes built in code for the path tracer's known-answer tests.
+#![allow(dead_code, missing_docs)]
+
+use glam::{Mat4, Vec2, Vec3};
+use mrshade_core::HdrImage;
+use mrshade_core::flags::Realness;
+use mrshade_core::settings::{ReferenceSettings, RenderSettings};
+use mrshade_scene::{Camera, Environment, Instance, Light, LightKind, Material, OutputSize, Primitive, Scene, Session};
+
+pub fn lambert(albedo: f32) -> Material {
+    Material {
+        name: "lambert".into(),
+        base_color: Vec3::splat(albedo).extend(1.0),
+        metallic: 0.0,
+        specular: 0.0,
+        ..Material::default()
+    }
+}
+
+/// A scene under construction.
+pub struct Builder {
+    pub scene: Scene,
+    pub environment: Option<Environment>,
+    pub photo: f32,
+}
+
+impl Builder {
+    /// A camera at `eye` looking along `forward` (unit), vertical field of view 0.8 rad.
+    pub fn new(eye: Vec3, forward: Vec3) -> Builder {
+        let up = if forward.y.abs() > 0.9 { Vec3::NEG_Z } else { Vec3::Y };
+        let world_from_camera = glam::camera::rh::view::look_to_mat4(eye, forward, up).inverse();
+        let camera = Camera {
+            node_name: "camera".into(),
+            camera_name: None,
+            yfov: 0.8,
+            aspect_ratio: None,
+            znear: 0.01,
+            world_from_camera,
+        };
+        Builder { scene: Scene { cameras: vec![camera], ..Scene::default() }, environment: None, photo: 0.5 }
+    }
+
+    pub fn uniform_probe(&mut self, radiance: f32) -> &mut Self {
+        self.environment =
+            Some(Environment { image: HdrImage::filled(16, 8, [radiance; 3]), rotation_deg: 0.0, intensity: 1.0 });
+        self
+    }
+
+    fn add(
+        &mut self,
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        indices: Vec<u32>,
+        material: Material,
+        realness: Realness,
+    ) {
+        self.scene.materials.push(material);
+        let uvs = vec![Vec2::ZERO; positions.len()];
+        self.scene.primitives.push(Primitive {
+            name: "shape".into(),
+            positions,
+            normals,
+            uvs,
+            indices,
+            material: self.scene.materials.len() - 1,
+        });
+        self.scene.instances.push(Instance {
+            node_name: "shape".into(),
+            primitive: self.scene.primitives.len() - 1,
+            world_from_object: Mat4::IDENTITY,
+            realness,
+        });
+    }
+
+    /// A square of side 2·`half` in the plane y = `y`, facing up.
+    pub fn floor(&mut self, half: f32, y: f32, material: Material, realness: Realness) -> &mut Self {
+        let p = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, z)| Vec3::new(x * half, y, z * half));
+        self.add(p.to_vec(), vec![Vec3::Y; 4], vec![0, 2, 1, 0, 3, 2], material, realness);
+        self
+    }
+
+    /// An axis-aligned box, outward normals (flat).
+    pub fn cuboid(&mut self, center: Vec3, half: Vec3, material: Material, realness: Realness) -> &mut Self {
+        let (mut p, mut n, mut idx) = (Vec::new(), Vec::new(), Vec::new());
+        for axis in 0..3 {
+            for sign in [-1.0f32, 1.0] {
+                let mut normal = Vec3::ZERO;
+                normal[axis] = sign;
+                let (u, v) = (
+                    Vec3::from_array(std::array::from_fn(|i| if i == (axis + 1) % 3 { 1.0 } else { 0.0 })),
+                    Vec3::from_array(std::array::from_fn(|i| if i == (axis + 2) % 3 { 1.0 } else { 0.0 })),
+                );
+                let base = p.len() as u32;
+                for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                    p.push(center + (normal + u * a + v * b) * half);
+                    n.push(normal);
+                }
+                // Counter-clockwise seen from outside.
+                if sign > 0.0 {
+                    idx.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+                } else {
+                    idx.extend([base, base + 2, base + 1, base, base + 3, base + 2]);
+                }
+            }
+        }
+        self.add(p, n, idx, material, realness);
+        self
+    }
+
+    /// A UV sphere with smooth normals.
+    pub fn sphere(&mut self, center: Vec3, radius: f32, material: Material, realness: Realness) -> &mut Self {
+        let (rings, segments) = (48u32, 96u32);
+        let (mut p, mut n, mut idx) = (Vec::new(), Vec::new(), Vec::new());
+        for r in 0..=rings {
+            let theta = std::f32::consts::PI * r as f32 / rings as f32;
+            for s in 0..=segments {
+                let phi = std::f32::consts::TAU * s as f32 / segments as f32;
+                let d = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+                p.push(center + d * radius);
+                n.push(d);
+            }
+        }
+        for r in 0..rings {
+            for s in 0..segments {
+                let a = r * (segments + 1) + s;
+                let b = a + segments + 1;
+                idx.extend([a, a + 1, b, a + 1, b + 1, b]);
+            }
+        }
+        self.add(p, n, idx, material, realness);
+        self
+    }
+
+    /// A spot light at `position` shining straight down.
+    pub fn spot_down(&mut self, position: Vec3, intensity: f32, cones: (f32, f32), realness: Realness) -> &mut Self {
+        self.scene.lights.push(Light {
+            name: "spot".into(),
+            kind: LightKind::Spot { inner_cone: cones.0, outer_cone: cones.1 },
+            intensity: Vec3::splat(intensity),
+            world_from_light: Mat4::from_translation(position) * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2),
+            realness,
+        });
+        self
+    }
+
+    pub fn session(&self, width: u32, height: u32, settings: ReferenceSettings) -> Session {
+        Session {
+            origin: "test".into(),
+            scene: self.scene.clone(),
+            camera: 0,
+            background: HdrImage::filled(width, height, [self.photo; 3]),
+            exposure: 1.0,
+            environment: self.environment.clone(),
+            output: OutputSize { width, height, supersample: 1, frames: 1 },
+            settings: RenderSettings { reference: settings, ..RenderSettings::default() },
+            warnings: Vec::new(),
+        }
+    }
+}
+
+/// The world point on the plane y = `y` seen through image position (`px`, `py`) in pixels.
+pub fn point_on_plane(session: &Session, px: f32, py: f32, y: f32) -> Vec3 {
+    let camera = &session.scene.cameras[0];
+    let (w, h) = (session.output.width as f32, session.output.height as f32);
+    let tan_half = (camera.yfov * 0.5).tan();
+    let dir = Vec3::new((2.0 * px / w - 1.0) * tan_half * w / h, (1.0 - 2.0 * py / h) * tan_half, -1.0);
+    let dir = camera.world_from_camera.transform_vector3(dir).normalize();
+    let eye = camera.world_from_camera.transform_point3(Vec3::ZERO);
+    eye + dir * ((y - eye.y) / dir.y)
+}
