@@ -1,4 +1,5 @@
-//! How far an image is from another: the metrics of `mrshade compare` (and of the evaluation
-//! to come), over the whole image or over a mask.
+//! How far an image is from another: the metrics of `mrshade compare` and `mrshade eval`, over
+//! the whole image or over a mask, and the evaluation report (Markdown, JSON, HTML).
 
 pub mod metrics;
+pub mod report;

@@ -37,6 +37,12 @@ pub enum Command {
     Info(InfoArgs),
     /// Score an image against a reference: FLIP, PSNR, RMSE, SSIM (over a mask if given).
     Compare(CompareArgs),
+    /// Render a session with the CPU differential path tracer (unbiased, all cores): L_rv and
+    /// L_r from the same paths, composited like the real-time methods. Minutes per image.
+    Reference(ReferenceArgs),
+    /// Render benchmark datasets with one or more methods, score each against its answer
+    /// (FLIP over the frame and the changed region, PSNR, SSIM), time it, and write a report.
+    Eval(EvalArgs),
 }
 
 /// How to load a session and what to change in it.
@@ -119,6 +125,47 @@ pub struct BenchArgs {
     /// Write the results as JSON here.
     #[arg(long, value_name = "OUT.json")]
     pub json: Option<PathBuf>,
+}
+
+/// `mrshade reference`.
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    /// The session and its overrides (`--set reference.max_bounces=4`, …).
+    #[command(flatten)]
+    pub session: SessionArgs,
+    /// Paths per pixel (default: the session's `[reference] spp`, 256).
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    /// Seed of the sample sequence (default: the session's, 0).
+    #[arg(long)]
+    pub seed: Option<u32>,
+    /// Output image: .png (sRGB), .exr (linear camera values) or .jpg.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Also write l_rv.exr, l_r.exr, alpha.exr, virtual_mask.png and side_by_side.png here.
+    #[arg(long, value_name = "DIR")]
+    pub aov_dir: Option<PathBuf>,
+}
+
+/// `mrshade eval`.
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    /// Dataset folders, each with session.toml, background.png and ground_truth.png (the
+    /// layout of the benchmark's scenes).
+    #[arg(value_name = "DATASET", required = true)]
+    pub datasets: Vec<PathBuf>,
+    /// Methods to run (repeatable or comma-separated): dir, direct, reference.
+    #[arg(long, value_delimiter = ',', default_value = "dir", value_parser = ["dir", "direct", "reference"])]
+    pub method: Vec<String>,
+    /// Paths per pixel of the reference method (default: the session's, 256).
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    /// Override any session setting (repeatable), as `render --set`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Write report.md, report.json, index.html and the images here.
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
 }
 
 /// `mrshade info`.

@@ -41,6 +41,8 @@ fn help_everywhere() {
         &["info", "--help"],
         &["adapters", "--help"],
         &["compare", "--help"],
+        &["reference", "--help"],
+        &["eval", "--help"],
     ] {
         let o = mrshade(args);
         assert!(o.status.success(), "{args:?}");

@@ -42,7 +42,7 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
 }
 
 /// An 8-bit sRGB image (alpha dropped).
-fn load(path: &Path) -> Result<Rgb8> {
+pub fn load(path: &Path) -> Result<Rgb8> {
     let img = image::open(path).with_context(|| format!("cannot read image {}", path.display()))?.to_rgb8();
     Ok(Rgb8 { width: img.width(), height: img.height(), rgb: img.into_raw() })
 }

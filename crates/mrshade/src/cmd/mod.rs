@@ -2,7 +2,9 @@
 
 mod bench;
 mod compare;
+mod eval;
 mod info;
+mod reference;
 mod render;
 
 use crate::args::{Cli, Command, SessionArgs};
@@ -49,6 +51,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Adapters => info::adapters(),
         Command::Info(args) => info::info(&args, log),
         Command::Compare(args) => compare::compare(&args),
+        Command::Reference(args) => reference::reference(&args, log),
+        Command::Eval(args) => eval::eval(&args, &gpu, log),
     }
 }
 

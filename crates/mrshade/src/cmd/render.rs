@@ -4,8 +4,8 @@ use super::{Log, load_session, open_gpu};
 use crate::args::{DemoArgs, RenderArgs};
 use crate::{demo_assets, output};
 use anyhow::Result;
-use mrshade_gpu::GpuOptions;
-use mrshade_render::Renderer;
+use mrshade_gpu::{GpuContext, GpuOptions};
+use mrshade_render::{Composite, Renderer};
 use mrshade_scene::{Session, SessionOverrides};
 use std::path::Path;
 use std::time::Instant;
@@ -45,15 +45,7 @@ fn render_session(session: &Session, out: &Path, aov_dir: Option<&Path>, gpu: &G
         session.output.frames,
         if session.output.frames == 1 { "" } else { "s" }
     ));
-    let frames = session.output.frames;
-    let bar = if log.shows_progress() && frames > 1 {
-        indicatif::ProgressBar::new(frames as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}")?);
-    let composite = renderer.render_still(&ctx, frames, |i| bar.set_position(i as u64))?;
-    bar.finish_and_clear();
+    let composite = render_still(&mut renderer, &ctx, session.output.frames, log)?;
     output::write_image(out, &composite.image)?;
     log.info(format!("wrote {} ({:.2} s)", out.display(), started.elapsed().as_secs_f64()));
     if let Some(dir) = aov_dir {
@@ -62,4 +54,17 @@ fn render_session(session: &Session, out: &Path, aov_dir: Option<&Path>, gpu: &G
         log.info(format!("wrote {} AOVs to {}", aovs.len() + 1, dir.display()));
     }
     Ok(())
+}
+
+/// A still of `frames` frames, with a progress bar.
+pub fn render_still(renderer: &mut Renderer, ctx: &GpuContext, frames: u32, log: Log) -> Result<Composite> {
+    let bar = if log.shows_progress() && frames > 1 {
+        indicatif::ProgressBar::new(frames as u64)
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}")?);
+    let composite = renderer.render_still(ctx, frames, |i| bar.set_position(i as u64))?;
+    bar.finish_and_clear();
+    Ok(composite)
 }

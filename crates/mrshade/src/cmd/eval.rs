@@ -1,0 +1,174 @@
+//! `mrshade eval`: render benchmark datasets with each method, score against the answers the
+//! way CALIBRATION.md does (FLIP heat-map mean over the frame and the changed region, PSNR),
+//! time, and report (Markdown, JSON, HTML with images).
+
+use super::compare::load as load_rgb8;
+use super::reference::render_reference;
+use super::render::render_still;
+use super::{Log, open_gpu};
+use crate::args::EvalArgs;
+use anyhow::{Context, Result, bail};
+use mrshade_core::HdrImage;
+use mrshade_core::color::linear_to_srgb_u8;
+use mrshade_core::region::changed_region;
+use mrshade_core::settings::Method;
+use mrshade_eval::metrics::{Rgb8, compare};
+use mrshade_eval::report::{Report, Row, RowImages};
+use mrshade_gpu::{GpuContext, GpuOptions};
+use mrshade_render::Renderer;
+use mrshade_scene::{Session, SessionOverrides};
+use std::path::Path;
+use std::time::Instant;
+
+/// Runs every method on every dataset and reports.
+pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
+    let mut methods: Vec<&str> = Vec::new();
+    for m in &args.method {
+        if !methods.contains(&m.as_str()) {
+            methods.push(m);
+        }
+    }
+    // Check every dataset before hours of rendering.
+    for dir in &args.datasets {
+        for file in ["session.toml", "background.png", "ground_truth.png"] {
+            if !dir.join(file).is_file() {
+                bail!(
+                    "dataset {}: no {file} (a dataset folder holds session.toml, background.png and ground_truth.png)",
+                    dir.display()
+                );
+            }
+        }
+    }
+    let ctx = if methods.iter().any(|m| *m != "reference") { Some(open_gpu(gpu, log)?) } else { None };
+    let mut rows = Vec::new();
+    for (i, dir) in args.datasets.iter().enumerate() {
+        let scene = dir.file_name().map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into_owned());
+        let answer = load_rgb8(&dir.join("ground_truth.png"))?;
+        let photo = load_rgb8(&dir.join("background.png"))?;
+        if (photo.width, photo.height) != (answer.width, answer.height) {
+            bail!("dataset {}: background.png and ground_truth.png differ in size", dir.display());
+        }
+        let region = changed_region(&answer.rgb, &photo.rgb, answer.width, answer.height);
+        for method in &methods {
+            log.info(format!("[{}/{}] {scene}: {method}", i + 1, args.datasets.len()));
+            let session = load(dir, method, args, &answer)?;
+            let (image, seconds, device) = render(&session, method, ctx.as_ref(), log)?;
+            let result = to_rgb8(&image);
+            let frame = compare(&answer, &result, None).map_err(anyhow::Error::msg)?;
+            let in_region = compare(&answer, &result, Some(&region)).map_err(anyhow::Error::msg)?;
+            let images = match &args.report {
+                Some(out) => write_images(out, &scene, method, dir, &result, &frame.heatmap)?,
+                None => RowImages {
+                    photo: String::new(),
+                    result: String::new(),
+                    answer: String::new(),
+                    heatmap: String::new(),
+                },
+            };
+            let row = Row {
+                scene: scene.clone(),
+                method: method.to_string(),
+                setting: setting(&session, method),
+                flip_region: in_region.scores.flip_heatmap_mean,
+                flip_frame: frame.scores.flip_heatmap_mean,
+                flip_error_region: in_region.scores.flip,
+                psnr_frame: frame.scores.psnr.is_finite().then_some(frame.scores.psnr),
+                ssim_frame: frame.scores.ssim,
+                region_fraction: region.iter().filter(|&&m| m).count() as f64 / region.len() as f64,
+                seconds,
+                device,
+                images,
+            };
+            log.info(format!(
+                "{scene} {method}: FLIP region {:.4}, frame {:.4}, PSNR {:.2} dB ({:.1} s)",
+                row.flip_region, row.flip_frame, frame.scores.psnr, seconds
+            ));
+            rows.push(row);
+        }
+    }
+    let report = Report { command: command_line(), version: env!("CARGO_PKG_VERSION").into(), rows };
+    println!("{}", report.markdown());
+    if let Some(out) = &args.report {
+        write(&out.join("report.md"), report.markdown().as_bytes())?;
+        write(&out.join("report.json"), report.json().as_bytes())?;
+        write(&out.join("index.html"), report.html().as_bytes())?;
+        log.info(format!("wrote report.md, report.json and index.html to {}", out.display()));
+    }
+    Ok(())
+}
+
+fn load(dir: &Path, method: &str, args: &EvalArgs, answer: &Rgb8) -> Result<Session> {
+    let mut set = args.set.clone();
+    set.extend(args.spp.map(|n| format!("reference.spp={n}")));
+    let real_time =
+        (method != "reference").then(|| Method::from_name(method)).transpose().map_err(anyhow::Error::msg)?;
+    // Rendered at the answer's size, whatever the session says.
+    let overrides = SessionOverrides {
+        width: Some(answer.width),
+        height: Some(answer.height),
+        method: real_time,
+        set,
+        stretch_photo: false,
+    };
+    Session::load(&dir.join("session.toml"), &overrides)
+}
+
+fn setting(session: &Session, method: &str) -> String {
+    if method == "reference" {
+        format!("{} spp", session.settings.reference.spp)
+    } else {
+        let frames = session.output.frames;
+        format!("{frames} frame{}", if frames == 1 { "" } else { "s" })
+    }
+}
+
+/// The composite, the render's wall-clock seconds, and where it ran.
+fn render(session: &Session, method: &str, ctx: Option<&GpuContext>, log: Log) -> Result<(HdrImage, f64, String)> {
+    if method == "reference" {
+        let (image, seconds) = render_reference(session, log)?;
+        return Ok((image.composite, seconds, format!("CPU, {} threads", rayon::current_num_threads())));
+    }
+    let ctx = ctx.context("no GPU context")?;
+    let started = Instant::now();
+    let mut renderer = Renderer::new(ctx, session)?;
+    let composite = render_still(&mut renderer, ctx, session.output.frames, log)?;
+    Ok((composite.image, started.elapsed().as_secs_f64(), ctx.info.name.clone()))
+}
+
+fn to_rgb8(image: &HdrImage) -> Rgb8 {
+    let rgb = image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect();
+    Rgb8 { width: image.width, height: image.height, rgb }
+}
+
+/// Writes the row's images under `out/scene/` (photo and answer once per scene).
+fn write_images(out: &Path, scene: &str, method: &str, dir: &Path, result: &Rgb8, heatmap: &Rgb8) -> Result<RowImages> {
+    let folder = out.join(scene);
+    std::fs::create_dir_all(&folder).with_context(|| format!("cannot create {}", folder.display()))?;
+    for (from, to) in [("background.png", "photo.png"), ("ground_truth.png", "answer.png")] {
+        std::fs::copy(dir.join(from), folder.join(to)).with_context(|| format!("cannot copy {from}"))?;
+    }
+    let save = |name: &str, img: &Rgb8| {
+        let path = folder.join(name);
+        image::save_buffer(&path, &img.rgb, img.width, img.height, image::ExtendedColorType::Rgb8)
+            .with_context(|| format!("cannot write {}", path.display()))
+    };
+    save(&format!("{method}.png"), result)?;
+    save(&format!("{method}_flip.png"), heatmap)?;
+    Ok(RowImages {
+        photo: format!("{scene}/photo.png"),
+        result: format!("{scene}/{method}.png"),
+        answer: format!("{scene}/answer.png"),
+        heatmap: format!("{scene}/{method}_flip.png"),
+    })
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<()> {
+    std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// The command as typed (arguments quoted where they hold spaces).
+fn command_line() -> String {
+    let args: Vec<String> =
+        std::env::args().skip(1).map(|a| if a.contains(' ') { format!("'{a}'") } else { a }).collect();
+    format!("mrshade {}", args.join(" "))
+}
