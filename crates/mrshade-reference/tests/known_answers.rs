@@ -159,3 +159,44 @@ fn a_virtual_object_shadows_the_real_floor_and_is_seen_through_coverage() {
     // Determinism: the same seed gives the same image.
     assert_eq!(render(&session, &|_, _| {}).composite.pixels, out.composite.pixels);
 }
+
+#[test]
+fn a_directional_light_shades_a_normal_mapped_plane_by_the_mapped_normal() {
+    // A 1×1 normal map tilts the floor's normal toward +u (+x): n' = t·m.x + b·m.y + n·m.z.
+    // L = ρ/π · E · (n'·l) for a directional light of irradiance E from l.
+    let texel = [204u8, 160, 220, 255];
+    let m = Vec3::new(texel[0] as f32, texel[1] as f32, texel[2] as f32) / 255.0 * 2.0 - Vec3::ONE;
+    let m = m.normalize();
+    let mut floor = lambert(0.5);
+    floor.normal_texture = Some((mrshade_scene::TextureRef { texture: 0 }, 1.0));
+    let mut b = Builder::new(Vec3::new(0.0, 2.0, 0.0), Vec3::NEG_Y);
+    b.floor(3.0, 0.0, floor, Real);
+    b.scene.textures.push(mrshade_scene::Texture {
+        name: "normals".into(),
+        width: 1,
+        height: 1,
+        rgba8: texel.to_vec(),
+        srgb: false,
+        repeat_u: true,
+        repeat_v: true,
+    });
+    // u grows along +x, v along +z (so the map's +y, up the image, is −z).
+    let uvs = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(u, v)| glam::Vec2::new(u, v));
+    b.scene.primitives[0].uvs = uvs.to_vec();
+    let l = Vec3::new(-0.5, 1.0, 0.3).normalize();
+    b.scene.lights.push(mrshade_scene::Light {
+        name: "sun".into(),
+        kind: mrshade_scene::LightKind::Directional,
+        intensity: Vec3::splat(2.0),
+        world_from_light: glam::Mat4::from_quat(glam::Quat::from_rotation_arc(Vec3::NEG_Z, -l)),
+        realness: Real,
+    });
+    let session = b.session(16, 12, ReferenceSettings { max_bounces: 1, ..settings(4) });
+    let out = render(&session, &|_, _| {});
+    let n = Vec3::new(m.x, m.z, -m.y).normalize();
+    let want = 0.5 / PI * 2.0 * n.dot(l);
+    let flat = 0.5 / PI * 2.0 * l.y;
+    let got = rgb(&out.l_rv, 8, 6).x;
+    assert!((got - want).abs() < 1e-3 * want, "{got} vs {want} (unmapped: {flat})");
+    assert!((want - flat).abs() > 0.05 * flat, "the map changes the answer");
+}
