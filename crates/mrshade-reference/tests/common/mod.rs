@@ -6,6 +6,7 @@ use mrshade_core::HdrImage;
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::{ReferenceSettings, RenderSettings};
 use mrshade_scene::{Camera, Environment, Instance, Light, LightKind, Material, OutputSize, Primitive, Scene, Session};
+use mrshade_testkit::gltf::{self, Shape};
 
 pub fn lambert(albedo: f32) -> Material {
     Material {
@@ -46,89 +47,39 @@ impl Builder {
         self
     }
 
-    fn add(
-        &mut self,
-        positions: Vec<Vec3>,
-        normals: Vec<Vec3>,
-        indices: Vec<u32>,
-        material: Material,
-        realness: Realness,
-    ) {
+    /// Places a testkit shape at `offset` with its own material.
+    fn add(&mut self, shape: Shape, offset: Vec3, material: Material, realness: Realness) -> &mut Self {
         self.scene.materials.push(material);
-        let uvs = vec![Vec2::ZERO; positions.len()];
         self.scene.primitives.push(Primitive {
             name: "shape".into(),
-            positions,
-            normals,
-            uvs,
-            indices,
+            positions: shape.positions.into_iter().map(Vec3::from).collect(),
+            normals: shape.normals.into_iter().map(Vec3::from).collect(),
+            uvs: shape.uvs.into_iter().map(Vec2::from).collect(),
+            indices: shape.indices,
             material: self.scene.materials.len() - 1,
         });
         self.scene.instances.push(Instance {
             node_name: "shape".into(),
             primitive: self.scene.primitives.len() - 1,
-            world_from_object: Mat4::IDENTITY,
+            world_from_object: Mat4::from_translation(offset),
             realness,
         });
+        self
     }
 
-    /// A square of side 2·`half` in the plane y = `y`, facing up.
+    /// A square of side 2·`half` in the plane y = `y`, facing up (u along +x, v along +z).
     pub fn floor(&mut self, half: f32, y: f32, material: Material, realness: Realness) -> &mut Self {
-        let p = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, z)| Vec3::new(x * half, y, z * half));
-        self.add(p.to_vec(), vec![Vec3::Y; 4], vec![0, 2, 1, 0, 3, 2], material, realness);
-        self
+        self.add(gltf::quad(half), Vec3::Y * y, material, realness)
     }
 
     /// An axis-aligned box, outward normals (flat).
     pub fn cuboid(&mut self, center: Vec3, half: Vec3, material: Material, realness: Realness) -> &mut Self {
-        let (mut p, mut n, mut idx) = (Vec::new(), Vec::new(), Vec::new());
-        for axis in 0..3 {
-            for sign in [-1.0f32, 1.0] {
-                let mut normal = Vec3::ZERO;
-                normal[axis] = sign;
-                let (u, v) = (
-                    Vec3::from_array(std::array::from_fn(|i| if i == (axis + 1) % 3 { 1.0 } else { 0.0 })),
-                    Vec3::from_array(std::array::from_fn(|i| if i == (axis + 2) % 3 { 1.0 } else { 0.0 })),
-                );
-                let base = p.len() as u32;
-                for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                    p.push(center + (normal + u * a + v * b) * half);
-                    n.push(normal);
-                }
-                // Counter-clockwise seen from outside.
-                if sign > 0.0 {
-                    idx.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
-                } else {
-                    idx.extend([base, base + 2, base + 1, base, base + 3, base + 2]);
-                }
-            }
-        }
-        self.add(p, n, idx, material, realness);
-        self
+        self.add(gltf::cuboid(half.to_array()), center, material, realness)
     }
 
-    /// A UV sphere with smooth normals.
+    /// A UV sphere with smooth normals (96 segments, 48 rings).
     pub fn sphere(&mut self, center: Vec3, radius: f32, material: Material, realness: Realness) -> &mut Self {
-        let (rings, segments) = (48u32, 96u32);
-        let (mut p, mut n, mut idx) = (Vec::new(), Vec::new(), Vec::new());
-        for r in 0..=rings {
-            let theta = std::f32::consts::PI * r as f32 / rings as f32;
-            for s in 0..=segments {
-                let phi = std::f32::consts::TAU * s as f32 / segments as f32;
-                let d = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
-                p.push(center + d * radius);
-                n.push(d);
-            }
-        }
-        for r in 0..rings {
-            for s in 0..segments {
-                let a = r * (segments + 1) + s;
-                let b = a + segments + 1;
-                idx.extend([a, a + 1, b, a + 1, b + 1, b]);
-            }
-        }
-        self.add(p, n, idx, material, realness);
-        self
+        self.add(gltf::sphere(radius, 96), center, material, realness)
     }
 
     /// A spot light at `position` shining straight down.
