@@ -69,6 +69,12 @@ impl HdrImage {
         sum.map(|s| (s / weight.max(1e-12)) as f32)
     }
 
+    /// The contract's camera encoding: every channel clamped to [0, 1] and sRGB-encoded to
+    /// 8 bits, row-major RGB (what a PNG or JPEG of the image holds).
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        self.pixels.iter().flat_map(|p| p.map(crate::color::linear_to_srgb_u8)).collect()
+    }
+
     /// Maximum of every channel of every pixel.
     pub fn max_value(&self) -> f32 {
         self.pixels.iter().flatten().fold(0.0f32, |m, &v| m.max(v))
@@ -78,6 +84,12 @@ impl HdrImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn srgb8_clamps_and_encodes_every_channel() {
+        let img = HdrImage { width: 2, height: 1, pixels: vec![[0.0, 1.0, 2.0], [0.5, -1.0, f32::NAN]] };
+        assert_eq!(img.to_srgb8(), vec![0, 255, 255, 188, 0, 0]);
+    }
 
     #[test]
     fn halving_averages_2x2_blocks() {

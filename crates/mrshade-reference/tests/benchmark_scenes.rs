@@ -3,7 +3,6 @@
 //! bound about 1.3× what it scores today. The full-size agreement at 256 spp is measured by
 //! `mrshade eval` (docs/benchmarks.md); this keeps it from regressing in CI.
 
-use mrshade_core::color::linear_to_srgb_u8;
 use mrshade_core::region::changed_region;
 use mrshade_eval::metrics::{Rgb8, compare};
 use mrshade_scene::{Session, SessionOverrides};
@@ -19,11 +18,7 @@ fn region_flip(scene: &str) -> f64 {
     let overrides = SessionOverrides { set: vec!["reference.spp=32".into()], ..Default::default() };
     let session = Session::load(&dir.join("session.toml"), &overrides).unwrap();
     let out = mrshade_reference::render(&session, &|_, _| {});
-    let result = Rgb8 {
-        width: out.composite.width,
-        height: out.composite.height,
-        rgb: out.composite.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect(),
-    };
+    let result = Rgb8 { width: out.composite.width, height: out.composite.height, rgb: out.composite.to_srgb8() };
     let (answer, photo) = (rgb8(&dir.join("ground_truth.png")), rgb8(&dir.join("background.png")));
     let region = changed_region(&answer.rgb, &photo.rgb, answer.width, answer.height);
     compare(&answer, &result, Some(&region)).unwrap().scores.flip_heatmap_mean

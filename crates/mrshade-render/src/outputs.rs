@@ -230,8 +230,7 @@ impl Renderer {
     /// Surface VPLs drawn over `image`: real VPLs of real light green, VPLs lit by virtual
     /// light cyan, VPLs on virtual surfaces orange, VPL3s (ir) red.
     fn vpl_overlay(&self, vpls: &[GpuVpl], image: &HdrImage) -> Vec<u8> {
-        let mut rgb: Vec<u8> =
-            image.pixels.iter().flat_map(|p| p.map(mrshade_core::color::linear_to_srgb_u8)).collect();
+        let mut rgb = image.to_srgb8();
         let (w, h) = (image.width as i32, image.height as i32);
         for v in vpls.iter().filter(|v| v.info.z == kind::SURFACE) {
             let clip = self.uniforms.clip_from_world * v.position.truncate().extend(1.0);

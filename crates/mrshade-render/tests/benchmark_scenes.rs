@@ -8,7 +8,6 @@
 mod common;
 
 use common::Rendered;
-use mrshade_core::color::linear_to_srgb_u8;
 use mrshade_core::region::{changed_region, masked_mean};
 use mrshade_scene::{AssetSource, Session, SessionOverrides};
 use std::path::PathBuf;
@@ -36,7 +35,7 @@ fn render(name: &str) -> (f32, f32) {
     let r = Rendered::new(session);
     let c = r.renderer.read_composite(&r.ctx).unwrap();
     let (w, h) = (c.image.width, c.image.height);
-    let ours: Vec<u8> = c.image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect();
+    let ours = c.image.to_srgb8();
     mrshade_testkit::golden::check(&format!("benchmark_{name}_160x120"), &ours, w, h, GOLDEN_THRESHOLD);
     let answer = rgb8(&dir.join("ground_truth.png"));
     let photo = rgb8(&dir.join("background.png"));

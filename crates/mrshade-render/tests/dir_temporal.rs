@@ -5,7 +5,6 @@ mod common;
 
 use common::{Rendered, Setup};
 use glam::{Mat4, Vec3};
-use mrshade_core::color::linear_to_srgb_u8;
 use mrshade_core::flags::Realness;
 use mrshade_render::Renderer;
 use serde_json::json;
@@ -47,7 +46,7 @@ fn scene(x: f32, frames: u32, light: Light) -> Setup {
 }
 
 fn srgb(r: &Renderer, ctx: &mrshade_gpu::GpuContext) -> Vec<u8> {
-    r.read_composite(ctx).unwrap().image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect()
+    r.read_composite(ctx).unwrap().image.to_srgb8()
 }
 
 /// 60 frames of a fixed view: the last 30 differ from each other by a mean FLIP < 0.01.

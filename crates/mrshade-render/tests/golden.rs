@@ -5,7 +5,6 @@
 mod common;
 
 use common::{Rendered, Setup};
-use mrshade_core::color::linear_to_srgb_u8;
 use mrshade_scene::{AssetSource, Session, SessionOverrides};
 use serde_json::json;
 
@@ -15,7 +14,7 @@ const THRESHOLD: f32 = 0.01;
 
 fn check(name: &str, r: &Rendered) {
     let c = r.renderer.read_composite(&r.ctx).unwrap();
-    let rgb: Vec<u8> = c.image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect();
+    let rgb = c.image.to_srgb8();
     mrshade_testkit::golden::check(name, &rgb, c.image.width, c.image.height, THRESHOLD);
 }
 

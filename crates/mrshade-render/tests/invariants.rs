@@ -5,7 +5,6 @@
 mod common;
 
 use common::{Rendered, Setup};
-use mrshade_core::color::linear_to_srgb_u8;
 use mrshade_core::flags::{SURFACE_COVERED, SURFACE_REAL};
 use mrshade_core::settings::CompositeSettings;
 use serde_json::json;
@@ -35,7 +34,7 @@ fn photo_bytes(s: &Setup) -> Vec<u8> {
 }
 
 fn composite_bytes(r: &Rendered) -> Vec<u8> {
-    r.renderer.read_composite(&r.ctx).unwrap().image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect()
+    r.renderer.read_composite(&r.ctx).unwrap().image.to_srgb8()
 }
 
 /// The `dir` method (few frames: its multiple bounces and smoothing run from frame 2 on).

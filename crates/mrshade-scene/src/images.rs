@@ -112,11 +112,7 @@ fn linear_to_hdr(img: DynamicImage) -> HdrImage {
 
 /// Encodes linear RGB as an sRGB 8-bit PNG (clamped), the contract's camera encoding.
 pub fn encode_png_srgb(img: &HdrImage) -> Result<Vec<u8>> {
-    let mut rgb = Vec::with_capacity(img.pixels.len() * 3);
-    for p in &img.pixels {
-        rgb.extend(p.map(mrshade_core::color::linear_to_srgb_u8));
-    }
-    encode_png_rgb8(img.width, img.height, rgb)
+    encode_png_rgb8(img.width, img.height, img.to_srgb8())
 }
 
 /// Encodes 8-bit RGB bytes as PNG.

@@ -25,8 +25,7 @@ pub fn write_image(path: &Path, img: &HdrImage) -> Result<()> {
         "exr" => encode_exr(img)?,
         "png" => encode_png_srgb(img)?,
         _ => {
-            let rgb: Vec<u8> = img.pixels.iter().flat_map(|p| p.map(mrshade_core::color::linear_to_srgb_u8)).collect();
-            let buf = image::RgbImage::from_raw(img.width, img.height, rgb).context("pixel buffer size")?;
+            let buf = image::RgbImage::from_raw(img.width, img.height, img.to_srgb8()).context("pixel buffer size")?;
             let mut out = std::io::Cursor::new(Vec::new());
             image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 95).encode_image(&buf)?;
             out.into_inner()

@@ -9,7 +9,6 @@ use super::{Log, open_gpu};
 use crate::args::EvalArgs;
 use anyhow::{Context, Result, bail};
 use mrshade_core::HdrImage;
-use mrshade_core::color::linear_to_srgb_u8;
 use mrshade_core::region::changed_region;
 use mrshade_core::settings::Method;
 use mrshade_eval::metrics::{Rgb8, compare};
@@ -136,8 +135,7 @@ fn render(session: &Session, method: &str, ctx: Option<&GpuContext>, log: Log) -
 }
 
 fn to_rgb8(image: &HdrImage) -> Rgb8 {
-    let rgb = image.pixels.iter().flat_map(|p| p.map(linear_to_srgb_u8)).collect();
-    Rgb8 { width: image.width, height: image.height, rgb }
+    Rgb8 { width: image.width, height: image.height, rgb: image.to_srgb8() }
 }
 
 /// Writes the row's images under `out/scene/` (photo and answer once per scene).
