@@ -38,18 +38,25 @@ pub struct Scores {
     pub pixels: usize,
 }
 
-/// The scores and FLIP's heat map of `test` against `reference`.
+/// The per-pixel errors of `test` against `reference`, computed once; [`Comparison::scores`]
+/// averages them over the whole image or a mask (the frame and the changed region of one
+/// result need one FLIP and one SSIM evaluation, not two).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Comparison {
-    /// The scores (over the mask if one was given).
-    pub scores: Scores,
     /// FLIP's error map as a magma heat map (RGB8, the whole image), as FLIP's own tool shows it.
     pub heatmap: Rgb8,
+    /// Squared error of the [0, 1] values, mean over channels.
+    squared: Vec<f32>,
+    /// FLIP error.
+    flip: Vec<f32>,
+    /// The heat map's value, mean over channels, in [0, 1].
+    heat: Vec<f32>,
+    /// SSIM, mean over channels.
+    ssim: Vec<f32>,
 }
 
-/// Compares `test` with `reference` over `mask` (row-major, one flag per pixel; `None`: every
-/// pixel). Errors name what does not fit: sizes, an empty mask.
-pub fn compare(reference: &Rgb8, test: &Rgb8, mask: Option<&[bool]>) -> Result<Comparison, String> {
+/// Compares `test` with `reference` pixel by pixel. Errors name what does not fit.
+pub fn compare(reference: &Rgb8, test: &Rgb8) -> Result<Comparison, String> {
     let (w, h) = (reference.width, reference.height);
     if (test.width, test.height) != (w, h) {
         return Err(format!("the images differ in size: {w}×{h} and {}×{}", test.width, test.height));
@@ -58,37 +65,45 @@ pub fn compare(reference: &Rgb8, test: &Rgb8, mask: Option<&[bool]>) -> Result<C
     if reference.rgb.len() != 3 * n || test.rgb.len() != 3 * n {
         return Err("image data does not match its size".into());
     }
-    if let Some(m) = mask.filter(|m| m.len() != n) {
-        return Err(format!("the mask has {} pixels, the images {n}", m.len()));
-    }
-    let inside = |i: usize| mask.is_none_or(|m| m[i]);
-    let pixels = (0..n).filter(|&i| inside(i)).count();
-    if pixels == 0 {
-        return Err("the mask selects no pixel".into());
-    }
-    let mean = |values: &[f32]| (0..n).filter(|&i| inside(i)).map(|i| values[i] as f64).sum::<f64>() / pixels as f64;
-    let squared: Vec<f32> = reference
+    let squared = reference
         .rgb
         .chunks_exact(3)
         .zip(test.rgb.chunks_exact(3))
         .map(|(a, b)| a.iter().zip(b).map(|(x, y)| ((*x as f32 - *y as f32) / 255.0).powi(2)).sum::<f32>() / 3.0)
         .collect();
-    let mse = mean(&squared);
     let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.rgb);
     let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.rgb);
     let flip = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
     let heatmap = Rgb8 { width: w, height: h, rgb: flip.apply_color_lut(&nv_flip::magma_lut()).to_vec() };
-    let heat: Vec<f32> =
-        heatmap.rgb.chunks_exact(3).map(|p| p.iter().map(|&c| c as f32).sum::<f32>() / 765.0).collect();
-    let scores = Scores {
-        flip: mean(&flip.to_vec()),
-        flip_heatmap_mean: mean(&heat),
-        psnr: if mse == 0.0 { f64::INFINITY } else { -10.0 * mse.log10() },
-        rmse: mse.sqrt(),
-        ssim: mean(&ssim_map(reference, test)),
-        pixels,
-    };
-    Ok(Comparison { scores, heatmap })
+    let heat = heatmap.rgb.chunks_exact(3).map(|p| p.iter().map(|&c| c as f32).sum::<f32>() / 765.0).collect();
+    Ok(Comparison { heatmap, squared, flip: flip.to_vec(), heat, ssim: ssim_map(reference, test) })
+}
+
+impl Comparison {
+    /// The scores over `mask` (row-major, one flag per pixel; `None`: every pixel). Errors
+    /// name what does not fit: the mask's size, an empty mask.
+    pub fn scores(&self, mask: Option<&[bool]>) -> Result<Scores, String> {
+        let n = self.squared.len();
+        if let Some(m) = mask.filter(|m| m.len() != n) {
+            return Err(format!("the mask has {} pixels, the images {n}", m.len()));
+        }
+        let inside = |i: usize| mask.is_none_or(|m| m[i]);
+        let pixels = (0..n).filter(|&i| inside(i)).count();
+        if pixels == 0 {
+            return Err("the mask selects no pixel".into());
+        }
+        let mean =
+            |values: &[f32]| (0..n).filter(|&i| inside(i)).map(|i| values[i] as f64).sum::<f64>() / pixels as f64;
+        let mse = mean(&self.squared);
+        Ok(Scores {
+            flip: mean(&self.flip),
+            flip_heatmap_mean: mean(&self.heat),
+            psnr: if mse == 0.0 { f64::INFINITY } else { -10.0 * mse.log10() },
+            rmse: mse.sqrt(),
+            ssim: mean(&self.ssim),
+            pixels,
+        })
+    }
 }
 
 /// Half-width of SSIM's Gaussian window (11×11).
@@ -167,7 +182,7 @@ mod tests {
     #[test]
     fn identical_images_score_perfectly() {
         let a = noise(24, 16, 7);
-        let s = compare(&a, &a, None).unwrap().scores;
+        let s = compare(&a, &a).unwrap().scores(None).unwrap();
         assert_eq!((s.flip, s.rmse, s.pixels), (0.0, 0.0, 24 * 16));
         // The magma map's darkest entry is (0, 0, 4).
         assert!((s.flip_heatmap_mean - 4.0 / 765.0).abs() < 1e-9, "heat map mean {}", s.flip_heatmap_mean);
@@ -180,7 +195,7 @@ mod tests {
         // 100 vs 110 everywhere: RMSE 10/255, PSNR −20 log10(10/255); flat images have no
         // variance, so SSIM is the luminance term (2ab + C1) / (a² + b² + C1).
         let (a, b) = (flat(16, 16, [100; 3]), flat(16, 16, [110; 3]));
-        let s = compare(&a, &b, None).unwrap().scores;
+        let s = compare(&a, &b).unwrap().scores(None).unwrap();
         let d = 10.0 / 255.0;
         assert!((s.rmse - d).abs() < 1e-6, "rmse {}", s.rmse);
         assert!((s.psnr + 20.0 * f64::log10(d)).abs() < 1e-4, "psnr {}", s.psnr);
@@ -202,8 +217,9 @@ mod tests {
         }
         let left: Vec<bool> = (0..16 * 8).map(|i| i % 16 < 4).collect();
         let right: Vec<bool> = (0..16 * 8).map(|i| i % 16 >= 12).collect();
-        let l = compare(&a, &b, Some(&left)).unwrap().scores;
-        let r = compare(&a, &b, Some(&right)).unwrap().scores;
+        let c = compare(&a, &b).unwrap();
+        let l = c.scores(Some(&left)).unwrap();
+        let r = c.scores(Some(&right)).unwrap();
         assert_eq!((l.rmse, l.pixels), (0.0, 32));
         assert!((r.rmse - 120.0 / 255.0).abs() < 1e-6, "rmse {}", r.rmse);
         assert!(r.flip > 0.5 && l.flip < r.flip, "flip {} / {}", l.flip, r.flip);
@@ -212,15 +228,16 @@ mod tests {
     #[test]
     fn misfits_are_errors_that_name_them() {
         let a = flat(8, 8, [0; 3]);
-        assert!(compare(&a, &flat(8, 4, [0; 3]), None).unwrap_err().contains("8×8 and 8×4"));
-        assert!(compare(&a, &a, Some(&[true; 10])).unwrap_err().contains("mask has 10 pixels"));
-        assert!(compare(&a, &a, Some(&[false; 64])).unwrap_err().contains("no pixel"));
+        assert!(compare(&a, &flat(8, 4, [0; 3])).unwrap_err().contains("8×8 and 8×4"));
+        let c = compare(&a, &a).unwrap();
+        assert!(c.scores(Some(&[true; 10])).unwrap_err().contains("mask has 10 pixels"));
+        assert!(c.scores(Some(&[false; 64])).unwrap_err().contains("no pixel"));
     }
 
     #[test]
     fn the_heat_map_has_the_image_size() {
         let (a, b) = (noise(10, 6, 1), noise(10, 6, 2));
-        let m = compare(&a, &b, None).unwrap().heatmap;
+        let m = compare(&a, &b).unwrap().heatmap;
         assert_eq!((m.width, m.height, m.rgb.len()), (10, 6, 180));
     }
 }

@@ -5,8 +5,8 @@
 use serde::Serialize;
 use std::fmt::Write;
 
-/// The images of one row, as paths relative to the report's folder.
-#[derive(Clone, Debug, Serialize)]
+/// The images of one row, as paths relative to the report's folder (empty without a report).
+#[derive(Clone, Debug, Default, Serialize)]
 pub struct RowImages {
     /// The photo (the real scene only).
     pub photo: String,

@@ -21,7 +21,7 @@ fn region_flip(scene: &str) -> f64 {
     let result = Rgb8 { width: out.composite.width, height: out.composite.height, rgb: out.composite.to_srgb8() };
     let (answer, photo) = (rgb8(&dir.join("ground_truth.png")), rgb8(&dir.join("background.png")));
     let region = changed_region(&answer.rgb, &photo.rgb, answer.width, answer.height);
-    compare(&answer, &result, Some(&region)).unwrap().scores.flip_heatmap_mean
+    compare(&answer, &result).unwrap().scores(Some(&region)).unwrap().flip_heatmap_mean
 }
 
 #[test]

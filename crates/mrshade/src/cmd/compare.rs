@@ -13,8 +13,10 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         Some(path) => Some(load(path)?.rgb.chunks_exact(3).map(|p| p.iter().any(|&c| c > 0)).collect::<Vec<bool>>()),
         None => None,
     };
-    let metrics::Comparison { scores, heatmap } = metrics::compare(&reference, &test, mask.as_deref())
-        .map_err(|e| anyhow::anyhow!("{} against {}: {e}", args.test.display(), args.reference.display()))?;
+    let misfit = |e: String| anyhow::anyhow!("{} against {}: {e}", args.test.display(), args.reference.display());
+    let comparison = metrics::compare(&reference, &test).map_err(misfit)?;
+    let scores = comparison.scores(mask.as_deref()).map_err(misfit)?;
+    let heatmap = &comparison.heatmap;
     if let Some(path) = &args.heatmap {
         image::save_buffer(path, &heatmap.rgb, heatmap.width, heatmap.height, image::ExtendedColorType::Rgb8)
             .with_context(|| format!("cannot write {}", path.display()))?;

@@ -48,31 +48,30 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
             bail!("dataset {}: background.png and ground_truth.png differ in size", dir.display());
         }
         let region = changed_region(&answer.rgb, &photo.rgb, answer.width, answer.height);
+        if let Some(out) = &args.report {
+            copy_photo_and_answer(out, &scene, dir)?;
+        }
         for method in &methods {
             log.info(format!("[{}/{}] {scene}: {method}", i + 1, args.datasets.len()));
             let session = load(dir, method, args, &answer)?;
             let (image, seconds, device) = render(&session, method, ctx.as_ref(), log)?;
             let result = to_rgb8(&image);
-            let frame = compare(&answer, &result, None).map_err(anyhow::Error::msg)?;
-            let in_region = compare(&answer, &result, Some(&region)).map_err(anyhow::Error::msg)?;
+            let comparison = compare(&answer, &result).map_err(anyhow::Error::msg)?;
+            let frame = comparison.scores(None).map_err(anyhow::Error::msg)?;
+            let in_region = comparison.scores(Some(&region)).map_err(anyhow::Error::msg)?;
             let images = match &args.report {
-                Some(out) => write_images(out, &scene, method, dir, &result, &frame.heatmap)?,
-                None => RowImages {
-                    photo: String::new(),
-                    result: String::new(),
-                    answer: String::new(),
-                    heatmap: String::new(),
-                },
+                Some(out) => write_images(out, &scene, method, &result, &comparison.heatmap)?,
+                None => RowImages::default(),
             };
             let row = Row {
                 scene: scene.clone(),
                 method: method.to_string(),
                 setting: setting(&session, method),
-                flip_region: in_region.scores.flip_heatmap_mean,
-                flip_frame: frame.scores.flip_heatmap_mean,
-                flip_error_region: in_region.scores.flip,
-                psnr_frame: frame.scores.psnr.is_finite().then_some(frame.scores.psnr),
-                ssim_frame: frame.scores.ssim,
+                flip_region: in_region.flip_heatmap_mean,
+                flip_frame: frame.flip_heatmap_mean,
+                flip_error_region: in_region.flip,
+                psnr_frame: frame.psnr.is_finite().then_some(frame.psnr),
+                ssim_frame: frame.ssim,
                 region_fraction: region.iter().filter(|&&m| m).count() as f64 / region.len() as f64,
                 seconds,
                 device,
@@ -80,7 +79,7 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
             };
             log.info(format!(
                 "{scene} {method}: FLIP region {:.4}, frame {:.4}, PSNR {:.2} dB ({:.1} s)",
-                row.flip_region, row.flip_frame, frame.scores.psnr, seconds
+                row.flip_region, row.flip_frame, frame.psnr, seconds
             ));
             rows.push(row);
         }
@@ -138,13 +137,19 @@ fn to_rgb8(image: &HdrImage) -> Rgb8 {
     Rgb8 { width: image.width, height: image.height, rgb: image.to_srgb8() }
 }
 
-/// Writes the row's images under `out/scene/` (photo and answer once per scene).
-fn write_images(out: &Path, scene: &str, method: &str, dir: &Path, result: &Rgb8, heatmap: &Rgb8) -> Result<RowImages> {
+/// Copies the dataset's photo and answer to `out/scene/`, once per scene.
+fn copy_photo_and_answer(out: &Path, scene: &str, dir: &Path) -> Result<()> {
     let folder = out.join(scene);
     std::fs::create_dir_all(&folder).with_context(|| format!("cannot create {}", folder.display()))?;
     for (from, to) in [("background.png", "photo.png"), ("ground_truth.png", "answer.png")] {
         std::fs::copy(dir.join(from), folder.join(to)).with_context(|| format!("cannot copy {from}"))?;
     }
+    Ok(())
+}
+
+/// Writes one row's result and heat map under `out/scene/`, beside the photo and answer.
+fn write_images(out: &Path, scene: &str, method: &str, result: &Rgb8, heatmap: &Rgb8) -> Result<RowImages> {
+    let folder = out.join(scene);
     let save = |name: &str, img: &Rgb8| {
         let path = folder.join(name);
         image::save_buffer(&path, &img.rgb, img.width, img.height, image::ExtendedColorType::Rgb8)
