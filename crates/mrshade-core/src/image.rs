@@ -75,6 +75,21 @@ impl HdrImage {
         self.pixels.iter().flat_map(|p| p.map(crate::color::linear_to_srgb_u8)).collect()
     }
 
+    /// Bilinear lookup between texel centres at `(u, v)` ∈ [0, 1]², for equirectangular maps:
+    /// u wraps around, v clamps at the poles (the data contract's probe mapping).
+    pub fn equirect_bilinear(&self, u: f32, v: f32) -> [f32; 3] {
+        let x = u * self.width as f32 - 0.5;
+        let y = (v * self.height as f32 - 0.5).clamp(0.0, self.height as f32 - 1.0);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let xi = |dx: i64| (x0 as i64 + dx).rem_euclid(self.width as i64) as u32;
+        let yi = |dy: u32| (y0 as u32 + dy).min(self.height - 1);
+        let lerp = |a: [f32; 3], b: [f32; 3], t: f32| std::array::from_fn(|c| a[c] + (b[c] - a[c]) * t);
+        let top = lerp(self.get(xi(0), yi(0)), self.get(xi(1), yi(0)), fx);
+        let bottom = lerp(self.get(xi(0), yi(1)), self.get(xi(1), yi(1)), fx);
+        lerp(top, bottom, fy)
+    }
+
     /// Maximum of every channel of every pixel.
     pub fn max_value(&self) -> f32 {
         self.pixels.iter().flatten().fold(0.0f32, |m, &v| m.max(v))

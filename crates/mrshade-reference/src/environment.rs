@@ -4,6 +4,7 @@
 //! pbrt-v4 §12.5.2), so that sun and lamp pixels of real probes are found by few samples.
 
 use glam::{Mat3, Vec2, Vec3};
+use mrshade_core::HdrImage;
 use mrshade_core::color::luminance;
 use mrshade_core::math::{dir_from_equirect_uv, equirect_uv_from_dir, probe_from_world};
 use mrshade_scene::Environment;
@@ -24,8 +25,8 @@ pub struct EnvSample {
 pub struct EnvironmentLight {
     width: u32,
     height: u32,
-    /// Radiance × intensity, row-major, row 0 = +Y.
-    texels: Vec<Vec3>,
+    /// Radiance × intensity, row 0 = +Y.
+    image: HdrImage,
     probe_from_world: Mat3,
     world_from_probe: Mat3,
     /// Per row: cumulative sums of the sampling weights (length width + 1).
@@ -38,11 +39,12 @@ impl EnvironmentLight {
     /// Prepares `env` for lookups and sampling.
     pub fn new(env: &Environment) -> Self {
         let (width, height) = (env.image.width, env.image.height);
-        let texels: Vec<Vec3> = env.image.pixels.iter().map(|p| Vec3::from(*p) * env.intensity).collect();
+        let image =
+            HdrImage { width, height, pixels: env.image.pixels.iter().map(|p| p.map(|c| c * env.intensity)).collect() };
         let lum = |x: i64, y: i64| {
             let x = x.rem_euclid(width as i64) as u32;
             let y = y.clamp(0, height as i64 - 1) as u32;
-            luminance(texels[(y * width + x) as usize].to_array()).max(0.0)
+            luminance(image.get(x, y)).max(0.0)
         };
         let mut conditional = Vec::with_capacity(height as usize);
         let mut marginal = vec![0.0f32];
@@ -67,7 +69,7 @@ impl EnvironmentLight {
         EnvironmentLight {
             width,
             height,
-            texels,
+            image,
             probe_from_world,
             world_from_probe: probe_from_world.transpose(),
             conditional,
@@ -78,18 +80,7 @@ impl EnvironmentLight {
     /// Radiance arriving from world direction `dir` (bilinear between texel centres).
     pub fn radiance(&self, dir: Vec3) -> Vec3 {
         let uv = equirect_uv_from_dir(self.probe_from_world * dir);
-        let x = uv.x * self.width as f32 - 0.5;
-        let y = (uv.y * self.height as f32 - 0.5).clamp(0.0, self.height as f32 - 1.0);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let at = |dx: i64, dy: i64| {
-            let xi = (x0 as i64 + dx).rem_euclid(self.width as i64) as u32;
-            let yi = (y0 as i64 + dy).min(self.height as i64 - 1) as u32;
-            self.texels[(yi * self.width + xi) as usize]
-        };
-        let top = at(0, 0) * (1.0 - fx) + at(1, 0) * fx;
-        let bottom = at(0, 1) * (1.0 - fx) + at(1, 1) * fx;
-        top * (1.0 - fy) + bottom * fy
+        Vec3::from(self.image.equirect_bilinear(uv.x, uv.y))
     }
 
     /// Whether the probe has any light to sample.
@@ -156,7 +147,6 @@ fn pick(cdf: &[f32], value: f32) -> (usize, f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mrshade_core::HdrImage;
 
     fn probe(f: impl Fn(u32, u32) -> [f32; 3], rotation_deg: f32) -> EnvironmentLight {
         let mut image = HdrImage::filled(32, 16, [0.0; 3]);

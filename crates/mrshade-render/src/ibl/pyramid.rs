@@ -24,18 +24,7 @@ impl EquirectPyramid {
 
     /// Bilinear lookup in level `level` at `(u, v)` ∈ [0, 1)², u wrapping.
     pub fn bilinear(&self, level: usize, u: f32, v: f32) -> Vec3 {
-        let img = &self.levels[level.min(self.levels.len() - 1)];
-        let x = u * img.width as f32 - 0.5;
-        let y = (v * img.height as f32 - 0.5).clamp(0.0, img.height as f32 - 1.0);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let w = img.width as i64;
-        let xi = |dx: i64| ((x0 as i64 + dx).rem_euclid(w)) as u32;
-        let yi = |dy: u32| (y0 as u32 + dy).min(img.height - 1);
-        let p = |xx, yy| Vec3::from(img.get(xx, yy));
-        let top = p(xi(0), yi(0)).lerp(p(xi(1), yi(0)), fx);
-        let bottom = p(xi(0), yi(1)).lerp(p(xi(1), yi(1)), fx);
-        top.lerp(bottom, fy)
+        Vec3::from(self.levels[level.min(self.levels.len() - 1)].equirect_bilinear(u, v))
     }
 
     /// Trilinear lookup of direction `d` at fractional level `lod`.
