@@ -24,3 +24,23 @@ impl<T> Differential<T> {
         Differential { rv: &self.rv, r: &self.r }
     }
 }
+
+/// Accumulates both halves at once (sums over paths keep the pair together).
+impl<T: std::ops::AddAssign> std::ops::AddAssign for Differential<T> {
+    fn add_assign(&mut self, other: Self) {
+        self.rv += other.rv;
+        self.r += other.r;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn adding_adds_each_half_to_its_own() {
+        let mut d = Differential { rv: 1.0, r: 2.0 };
+        d += Differential { rv: 10.0, r: 20.0 };
+        assert_eq!(d, Differential { rv: 11.0, r: 22.0 });
+    }
+}

@@ -6,8 +6,8 @@ use crate::geometry::Geometry;
 use crate::integrator::Tracer;
 use crate::sampler::PathSampler;
 use glam::{Vec3, Vec4Swizzles};
-use mrshade_core::HdrImage;
 use mrshade_core::settings::CompositeSettings;
+use mrshade_core::{Differential, HdrImage};
 use mrshade_scene::Session;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -31,8 +31,8 @@ pub struct ReferenceImage {
 /// Per-pixel sums over its samples.
 #[derive(Clone, Copy, Default)]
 struct PixelSums {
-    all: [Vec3; 2],
-    real: [Vec3; 2],
+    all: Differential<Vec3>,
+    real: Differential<Vec3>,
     real_count: u32,
     virtual_rv: Vec3,
     virtual_count: u32,
@@ -66,14 +66,12 @@ pub fn render(session: &Session, progress: &(dyn Fn(u32, u32) + Sync)) -> Refere
                         let dir = camera.world_from_camera.transform_vector3(Vec3::new(sx, sy, -1.0)).normalize();
                         let result = tracer.trace_camera(origin, dir, &sampler);
                         let l = result.radiance;
-                        sums.all[0] += l.rv;
-                        sums.all[1] += l.r;
+                        sums.all += l;
                         if result.sees_virtual {
                             sums.virtual_rv += l.rv;
                             sums.virtual_count += 1;
                         } else {
-                            sums.real[0] += l.rv;
-                            sums.real[1] += l.r;
+                            sums.real += l;
                             sums.real_count += 1;
                         }
                     }
@@ -103,14 +101,14 @@ fn finish(session: &Session, composite: &CompositeSettings, sums: &[PixelSums]) 
     };
     for (i, s) in sums.iter().enumerate() {
         let photo = Vec3::from(session.background.pixels[i]);
-        out.l_rv.pixels[i] = (s.all[0] / n).to_array();
-        out.l_r.pixels[i] = (s.all[1] / n).to_array();
+        out.l_rv.pixels[i] = (s.all.rv / n).to_array();
+        out.l_r.pixels[i] = (s.all.r / n).to_array();
         let coverage = s.virtual_count as f32 / n;
         out.coverage[i] = coverage;
         let mut real_part = photo;
         if s.real_count > 0 {
-            let rv = s.real[0] / s.real_count as f32;
-            let r = s.real[1] / s.real_count as f32;
+            let rv = s.real.rv / s.real_count as f32;
+            let r = s.real.r / s.real_count as f32;
             let alpha = Vec3::from_array(std::array::from_fn(|c| composite.alpha(photo[c], exposure * r[c])));
             real_part = photo + alpha * exposure * (rv - r);
             out.alpha.pixels[i] = alpha.to_array();
