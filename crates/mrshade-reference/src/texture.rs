@@ -11,13 +11,13 @@ pub fn sample(scene: &Scene, texture: TextureRef, uv: Vec2) -> Vec4 {
     let y = uv.y * tex.height as f32 - 0.5;
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
-    let texel = |dx: f32, dy: f32| {
-        let i = wrap(x0 as i64 + dx as i64, tex.width, tex.repeat_u);
-        let j = wrap(y0 as i64 + dy as i64, tex.height, tex.repeat_v);
+    let texel = |dx: i64, dy: i64| {
+        let i = wrap(x0 as i64 + dx, tex.width, tex.repeat_u);
+        let j = wrap(y0 as i64 + dy, tex.height, tex.repeat_v);
         texel(tex, i, j)
     };
-    let top = texel(0.0, 0.0) * (1.0 - fx) + texel(1.0, 0.0) * fx;
-    let bottom = texel(0.0, 1.0) * (1.0 - fx) + texel(1.0, 1.0) * fx;
+    let top = texel(0, 0) * (1.0 - fx) + texel(1, 0) * fx;
+    let bottom = texel(0, 1) * (1.0 - fx) + texel(1, 1) * fx;
     top * (1.0 - fy) + bottom * fy
 }
 
