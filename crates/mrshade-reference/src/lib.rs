@@ -21,3 +21,19 @@ pub mod surface;
 mod texture;
 
 pub use render::{ReferenceImage, render};
+
+/// What the path tracer renders otherwise than `scene` asks, one line each: transmission is
+/// always smooth (`bsdf`), so rough glass is rendered as smooth glass.
+pub fn warnings(scene: &mrshade_scene::Scene) -> Vec<String> {
+    scene
+        .materials
+        .iter()
+        .filter(|m| m.transmission > 0.0 && m.roughness >= 0.03)
+        .map(|m| {
+            format!(
+                "material '{}': rough transmission (roughness {}) is path traced as smooth glass",
+                m.name, m.roughness
+            )
+        })
+        .collect()
+}

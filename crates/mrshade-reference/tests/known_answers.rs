@@ -161,6 +161,21 @@ fn a_virtual_object_shadows_the_real_floor_and_is_seen_through_coverage() {
 }
 
 #[test]
+fn rough_glass_is_reported_as_rendered_smooth() {
+    let mut b = Builder::new(Vec3::Z, Vec3::NEG_Z);
+    let glass = |roughness| mrshade_scene::Material {
+        name: format!("glass {roughness}"),
+        transmission: 1.0,
+        roughness,
+        ..mrshade_scene::Material::default()
+    };
+    b.sphere(Vec3::ZERO, 0.5, glass(0.0), Virtual).sphere(Vec3::X, 0.5, glass(0.4), Virtual);
+    let warnings = mrshade_reference::warnings(&b.scene);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("glass 0.4") && warnings[0].contains("smooth glass"));
+}
+
+#[test]
 fn a_directional_light_shades_a_normal_mapped_plane_by_the_mapped_normal() {
     // A 1×1 normal map tilts the floor's normal toward +u (+x): n' = t·m.x + b·m.y + n·m.z.
     // L = ρ/π · E · (n'·l) for a directional light of irradiance E from l.

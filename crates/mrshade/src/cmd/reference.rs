@@ -38,13 +38,8 @@ pub fn render_reference(session: &Session, log: Log) -> Result<(ReferenceImage, 
         s.max_bounces,
         rayon::current_num_threads()
     ));
-    for m in &session.scene.materials {
-        if m.transmission > 0.0 && m.roughness >= 0.03 {
-            log.warn(format!(
-                "material '{}': rough transmission (roughness {}) is path traced as smooth glass",
-                m.name, m.roughness
-            ));
-        }
+    for w in mrshade_reference::warnings(&session.scene) {
+        log.warn(w);
     }
     let bar = if log.shows_progress() {
         indicatif::ProgressBar::new(session.output.height as u64)
