@@ -164,6 +164,10 @@ fn bad_values_are_errors() {
         ("exposure = 1.5", "exposure = -1.0", "exposure"),
         ("intensity = 0.5", "intensity = -2.0", "environment.intensity"),
         ("exposure = 1.5", "exposure = 1.5\n[composite]\nalpha_max = 0.5", "composite.alpha_max"),
+        ("exposure = 1.5", "exposure = 1.5\n[reference]\nspp = 0", "reference.spp"),
+        ("exposure = 1.5", "exposure = 1.5\n[reference]\nmax_bounces = 0", "reference.max_bounces"),
+        ("exposure = 1.5", "exposure = 1.5\n[reference]\nsamples = 4", "unknown field `samples`"),
+        ("exposure = 1.5", "exposure = 1.5\n[reference]\nspp = -4", "spp"),
     ] {
         let (_dir, path) = session_dir(Some(4.0 / 3.0), (32, 24));
         edit(&path, from, to);

@@ -98,3 +98,28 @@ fn eval_names_what_a_dataset_lacks() {
     assert!(err.trim().lines().count() == 1 && err.contains("background.png"), "{err}");
     assert!(!Path::new(&dataset.join("report.md")).exists());
 }
+
+#[test]
+fn eval_rejects_misfit_answers_and_unknown_methods() {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = dir.path().join("scene");
+    std::fs::create_dir_all(&dataset).unwrap();
+    for f in ["session.toml", "scene.glb", "environment.exr", "background.png", "ground_truth.png"] {
+        std::fs::copy(assets(&format!("benchmark/desk-bunny/{f}")), dataset.join(f)).unwrap();
+    }
+    let one_line = |o: &Output, needle: &str| {
+        assert!(!o.status.success());
+        let err = stderr(o);
+        assert!(err.trim().lines().count() == 1 && err.contains(needle), "{err}");
+    };
+    let args = ["eval", "-q", dataset.to_str().unwrap(), "--method", "reference", "--spp", "1"];
+    // An answer that is not an image.
+    std::fs::write(dataset.join("ground_truth.png"), b"not a png").unwrap();
+    one_line(&mrshade(&args), "ground_truth.png");
+    // An answer of another size than the photo.
+    image::RgbImage::new(40, 30).save(dataset.join("ground_truth.png")).unwrap();
+    one_line(&mrshade(&args), "differ in size");
+    // clap rejects an unknown method, naming the known ones.
+    let o = mrshade(&["eval", dataset.to_str().unwrap(), "--method", "magic"]);
+    assert!(!o.status.success() && stderr(&o).contains("reference"), "{}", stderr(&o));
+}
