@@ -22,6 +22,14 @@ impl HdrImage {
         self.pixels[(y * self.width + x) as usize]
     }
 
+    /// How many pixels hold NaN or an infinity, and where the first is (`None` if none).
+    pub fn non_finite(&self) -> Option<(usize, (u32, u32))> {
+        let bad = |p: &[f32; 3]| p.iter().any(|v| !v.is_finite());
+        let first = self.pixels.iter().position(bad)?;
+        let count = self.pixels.iter().filter(|p| bad(p)).count();
+        Some((count, (first as u32 % self.width, first as u32 / self.width)))
+    }
+
     /// Width / height.
     pub fn aspect(&self) -> f32 {
         self.width as f32 / self.height as f32

@@ -13,6 +13,7 @@ pub mod image;
 pub mod math;
 pub mod region;
 pub mod settings;
+pub mod text;
 
 pub use differential::Differential;
 pub use image::HdrImage;

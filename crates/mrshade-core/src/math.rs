@@ -40,9 +40,51 @@ pub fn equirect_texel_solid_angle(y: u32, width: u32, height: u32) -> f32 {
     (TAU / width as f32) * (theta0.cos() - theta1.cos())
 }
 
+/// The matrix that carries object-space normals to world space under `world_from_object`:
+/// the cofactor matrix of its linear part (det · M⁻ᵀ: the directions of the inverse
+/// transpose, which normals are normalised after anyway), signed like the determinant and
+/// scaled so that its largest entry is 1. Unlike the inverse, it is finite for every finite
+/// matrix (a scale of 10⁻³⁰ on one axis gives the inverse entries of 10³⁰, whose squares
+/// overflow) and still right for a flattened one (a zero scale keeps the plane's normal).
+pub fn normal_from_object(world_from_object: Mat4) -> Mat4 {
+    let m = Mat3::from_mat4(world_from_object);
+    let largest = m.to_cols_array().iter().fold(0.0f32, |a, v| a.max(v.abs()));
+    if !(largest > 0.0 && largest.is_finite()) {
+        return Mat4::IDENTITY;
+    }
+    let m = m * (1.0 / largest);
+    let cofactor = Mat3::from_cols(m.y_axis.cross(m.z_axis), m.z_axis.cross(m.x_axis), m.x_axis.cross(m.y_axis));
+    let sign = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
+    let largest = cofactor.to_cols_array().iter().fold(0.0f32, |a, v| a.max(v.abs()));
+    if largest > 0.0 { Mat4::from_mat3(cofactor * (sign / largest)) } else { Mat4::IDENTITY }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn normals_follow_the_inverse_transpose_and_stay_finite() {
+        use glam::{Quat, Vec3};
+        let transforms = [
+            Mat4::from_scale_rotation_translation(Vec3::new(2.0, 0.5, 3.0), Quat::from_rotation_y(0.7), Vec3::ONE),
+            Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0)),
+            Mat4::from_cols_array(&[1.0, 0.3, 0.0, 0.0, 0.0, 1.0, 0.2, 0.0, 0.1, 0.0, 1.0, 0.0, 5.0, 6.0, 7.0, 1.0]),
+        ];
+        for m in transforms {
+            let reference = m.inverse().transpose();
+            for n in [Vec3::X, Vec3::Y, Vec3::new(0.3, -0.5, 0.8).normalize()] {
+                let want = reference.transform_vector3(n).normalize();
+                let got = normal_from_object(m).transform_vector3(n).normalize();
+                assert!(got.abs_diff_eq(want, 1e-5), "{m:?} {n}: {got} vs {want}");
+            }
+        }
+        // Nearly flat and flat: the plane's normal, finite.
+        for z in [1e-30, 0.0] {
+            let n = normal_from_object(Mat4::from_scale(Vec3::new(1.0, 1.0, z))).transform_vector3(Vec3::Z);
+            assert!(n.is_finite() && n.normalize().abs_diff_eq(Vec3::Z, 1e-6), "{z}: {n}");
+        }
+    }
 
     #[test]
     fn contract_axes() {

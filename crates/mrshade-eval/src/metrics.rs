@@ -10,6 +10,10 @@
 //! nonlinear function of the error (4/765 for identical images); only it can be put beside
 //! those tables.
 
+/// Largest image `compare` and `eval` score by default: FLIP holds about 120 bytes per pixel
+/// (126 MB measured at 1024 × 1024), so 16 Mi pixels (4096 × 4096) take about 2 GiB.
+pub const DEFAULT_MAX_PIXELS: u64 = 1 << 24;
+
 /// An RGB8 image, row-major.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rgb8 {

@@ -14,7 +14,8 @@ use mrshade_core::flags::Realness;
 use mrshade_scene::{AlphaMode, Scene};
 use obvhs::{
     BvhBuildParams,
-    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
+    aabb::Aabb,
+    cwbvh::{CwBvh, builder::build_cwbvh},
     ray::{Ray, RayHit},
     triangle::Triangle as BvhTriangle,
 };
@@ -65,13 +66,26 @@ pub struct Geometry {
     alpha_cutoff: Vec<Option<f32>>,
 }
 
+/// The box the BVH is built over for triangle `index`: its bounds grown by a tiny amount that
+/// differs from triangle to triangle. PLOC (obvhs) merges only mutual nearest neighbours;
+/// copies of one triangle at one place cost the same everywhere, which leaves one merge per
+/// pass (20,000 coincident quads from a hostile glTF took a minute). Different paddings break
+/// the ties. The boxes only grow, so traversal still finds every triangle it must test.
+fn tie_breaking_box(t: &Triangle, index: usize) -> Aabb {
+    let b = BvhTriangle { v0: t.p[0].into(), v1: t.p[1].into(), v2: t.p[2].into() }.aabb();
+    let size = (b.max - b.min).max_element() + b.max.abs().max(b.min.abs()).max_element();
+    let fraction = ((index as u32).wrapping_mul(0x9e37_79b1) >> 8) as f32 / (1u32 << 24) as f32;
+    let pad = Vec3A::splat(size * 1e-5 * (0.5 + fraction));
+    Aabb::new(b.min - pad, b.max + pad)
+}
+
 impl Geometry {
     /// Flattens every instance of `scene` into world space and builds the BVH.
     pub fn new(scene: &Scene) -> Geometry {
         let mut triangles = Vec::new();
         for inst in &scene.instances {
             let prim = &scene.primitives[inst.primitive];
-            let normal_from_object = inst.world_from_object.inverse().transpose();
+            let normal_from_object = mrshade_core::math::normal_from_object(inst.world_from_object);
             // A mirroring transform flips the winding; normals stay as the file gives them.
             for tri in prim.indices.chunks_exact(3) {
                 let idx = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
@@ -91,11 +105,8 @@ impl Geometry {
             })
             .collect();
         let bvh = (!triangles.is_empty()).then(|| {
-            let tris: Vec<BvhTriangle> = triangles
-                .iter()
-                .map(|t| BvhTriangle { v0: t.p[0].into(), v1: t.p[1].into(), v2: t.p[2].into() })
-                .collect();
-            build_cwbvh_from_tris(&tris, BvhBuildParams::medium_build(), &mut Default::default())
+            let boxes: Vec<Aabb> = triangles.iter().enumerate().map(|(i, t)| tie_breaking_box(t, i)).collect();
+            build_cwbvh(&boxes, BvhBuildParams::medium_build(), &mut Default::default())
         });
         Geometry { triangles, bvh, alpha_cutoff }
     }

@@ -85,6 +85,13 @@ impl Renderer {
         for p in &mut still.image.pixels {
             *p = p.map(|c| c * scale);
         }
+        // Never a silent black image: NaN is written as black.
+        if let Some((count, (x, y))) = still.image.non_finite() {
+            anyhow::bail!(
+                "the composite holds {count} NaN or infinite pixel(s), the first at ({x}, {y}) (a bug in mrshade, \
+                 please report it with the session)"
+            );
+        }
         Ok(still)
     }
 

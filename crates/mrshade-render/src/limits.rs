@@ -1,11 +1,41 @@
-//! Fitting the memory-heavy settings to the device: shadow maps, RSMs and ISM atlases each
-//! live in one storage buffer, which a device binds only up to
-//! `max_storage_buffer_binding_size` (128 MiB on many). A setting that would exceed it is
-//! halved until it fits, with a warning that names it, instead of failing validation.
+//! Fitting a session to the device before anything is allocated on it.
+//!
+//! Every large GPU resource the renderer makes is sized here from the scene, the output size
+//! and the settings, and checked against the device's limits (one buffer binding, one texture
+//! side, texture-array layers) and against the session's GPU memory budget
+//! (`limits.gpu_mib`). What can shrink without changing what is computed, only its
+//! resolution, is halved until it fits, with a warning naming the setting: shadow maps, RSMs,
+//! ISM tiles, ISM points, supersampling. What cannot (too many lights, triangles or textures
+//! for this device, an output too large) is an error naming the input and the limit, before
+//! wgpu would fail with a validation error.
 
+use crate::dir::GpuPoint;
 use crate::passes::rsm;
-use mrshade_core::settings::RenderSettings;
-use mrshade_scene::{LightKind, Scene};
+use crate::scene_gpu::{GpuInstance, GpuMaterial, MAX_FRUSTUM_HALF_ANGLE, Vertex};
+use anyhow::{Result, bail};
+use mrshade_core::settings::{Method, RenderSettings};
+use mrshade_scene::{LightKind, OutputSize, Scene, Session};
+use std::mem::size_of;
+
+/// Bytes of one compute-raster view beyond its target: its big-triangle list (16384 records
+/// of 80 bytes, `raster::BIG_CAPACITY × raster::BIG_RECORD_BYTES`).
+const VIEW_BYTES: u64 = 16384 * 80;
+/// Bytes of an ISM point.
+const POINT_BYTES: u64 = size_of::<GpuPoint>() as u64;
+/// Bytes per internal pixel of the screen targets every method has: the G-buffer (six
+/// targets, 44 bytes), its visibility buffer (8), `L_rv` and `L_r` (16); per output pixel the
+/// photo, the composite and α (40).
+const SCREEN_BYTES: u64 = 44 + 8 + 16;
+const OUTPUT_BYTES: u64 = 40;
+/// Bytes per internal pixel that `dir` adds: four sets of five RGBA16F indirect targets
+/// (interleaved, two histories, merged) and the previous depth and normal (16).
+const DIR_SCREEN_BYTES: u64 = 4 * 5 * 8 + 16;
+/// Bytes per scene vertex, index, placed triangle, placed primitive and material on the GPU.
+const VERTEX_BYTES: u64 = size_of::<Vertex>() as u64;
+const INDEX_BYTES: u64 = 4;
+const TRIANGLE_BYTES: u64 = 16;
+const INSTANCE_BYTES: u64 = size_of::<GpuInstance>() as u64;
+const MATERIAL_BYTES: u64 = size_of::<GpuMaterial>() as u64;
 
 /// Shadow-map layers of `scene`'s lights: real-only and virtual-only sets, six faces for
 /// point lights and wide spots.
@@ -15,20 +45,45 @@ pub fn shadow_layer_count(scene: &Scene) -> u64 {
         .iter()
         .map(|l| match l.kind {
             LightKind::Directional => 2,
-            LightKind::Spot { outer_cone, .. } if outer_cone <= crate::scene_gpu::MAX_FRUSTUM_HALF_ANGLE => 2,
+            LightKind::Spot { outer_cone, .. } if outer_cone <= MAX_FRUSTUM_HALF_ANGLE => 2,
             _ => 12,
         })
         .sum()
 }
 
-/// `settings` with every buffer within `max_binding` bytes; the warnings say what changed.
-pub fn fit_to_device(settings: &RenderSettings, scene: &Scene, max_binding: u64) -> (RenderSettings, Vec<String>) {
-    let mut fitted = settings.clone();
+/// What a device allows, from `wgpu::Limits`.
+#[derive(Clone, Copy, Debug)]
+pub struct DeviceLimits {
+    /// Largest storage-buffer binding (and buffer), in bytes.
+    pub max_binding: u64,
+    /// Largest 2D texture side.
+    pub max_texture_side: u32,
+    /// Most layers of a texture array.
+    pub max_array_layers: u32,
+}
+
+impl From<&wgpu::Limits> for DeviceLimits {
+    fn from(l: &wgpu::Limits) -> Self {
+        Self {
+            max_binding: l.max_storage_buffer_binding_size.min(l.max_buffer_size),
+            max_texture_side: l.max_texture_dimension_2d,
+            max_array_layers: l.max_texture_array_layers,
+        }
+    }
+}
+
+/// The settings and output size `session` renders with on a device of `device` limits, and
+/// what had to change; or why it cannot render there at all.
+pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderSettings, OutputSize, Vec<String>)> {
+    let scene = &session.scene;
+    let mut settings = session.settings.clone();
+    let mut output = session.output;
     let mut warnings = Vec::new();
+    let max_binding = device.max_binding;
     let layers = shadow_layer_count(scene).max(1);
-    let mut shrink = |name: &str, value: &mut u32, bytes_per_unit: u64, minimum: u32| {
+    let mut shrink = |name: &str, value: &mut u32, fits: &dyn Fn(u64) -> bool, minimum: u32| -> bool {
         let requested = *value;
-        while *value > minimum && bytes_per_unit * (*value as u64).pow(2) > max_binding {
+        while *value > minimum && !fits(*value as u64) {
             *value /= 2;
         }
         if *value != requested {
@@ -38,36 +93,226 @@ pub fn fit_to_device(settings: &RenderSettings, scene: &Scene, max_binding: u64)
                 *value
             ));
         }
+        fits(*value as u64)
     };
-    shrink("shadows.resolution", &mut fitted.shadows.resolution, layers * 8, 64);
-    let dir = &mut fitted.dir;
-    shrink("dir.rsm_resolution", &mut dir.rsm_resolution, layers * rsm::TEXEL_BYTES, 16);
-    let tiles_per_row = (dir.vpl_count as f64).sqrt().ceil() as u64;
-    shrink("dir.ism_resolution", &mut dir.ism_resolution, tiles_per_row * tiles_per_row * 4, 16);
-    (fitted, warnings)
+
+    let screen_fits = |ss: u64| {
+        let (w, h) = (output.width as u64 * ss, output.height as u64 * ss);
+        w <= device.max_texture_side as u64 && h <= device.max_texture_side as u64 && w * h * 8 <= max_binding
+    };
+    if !shrink("output.supersample", &mut output.supersample, &screen_fits, 1) {
+        bail!(
+            "the output of {}×{} pixels is larger than this device renders (textures of at most {} pixels a side, \
+             a visibility buffer of at most {} MiB); lower --width/--height",
+            output.width,
+            output.height,
+            device.max_texture_side,
+            max_binding >> 20
+        );
+    }
+    let shadow_fits = |res: u64| layers * res * res * 8 <= max_binding;
+    if !shrink("shadows.resolution", &mut settings.shadows.resolution, &shadow_fits, 64) {
+        bail!(
+            "the scene's {} lights need {layers} shadow-map layers, more than one GPU buffer of this device holds \
+             ({} MiB) even at 64×64 texels; remove lights",
+            scene.lights.len(),
+            max_binding >> 20
+        );
+    }
+    if settings.method == Method::Dir {
+        let dir = &mut settings.dir;
+        let rsm_fits = |res: u64| layers * res * res * rsm::TEXEL_BYTES <= max_binding;
+        if !shrink("dir.rsm_resolution", &mut dir.rsm_resolution, &rsm_fits, 16) {
+            bail!(
+                "the scene's {} lights need {layers} RSM layers, more than one GPU buffer of this device holds ({} MiB) \
+                 even at 16×16 texels; remove lights",
+                scene.lights.len(),
+                max_binding >> 20
+            );
+        }
+        let tiles_per_row = (dir.vpl_count as f64).sqrt().ceil() as u64;
+        let ism_fits = |res: u64| tiles_per_row * tiles_per_row * res * res * 4 <= max_binding;
+        shrink("dir.ism_resolution", &mut dir.ism_resolution, &ism_fits, 16);
+        let vpls = dir.vpl_count as u64;
+        let points_fit = |points: u64| vpls * points * POINT_BYTES <= max_binding;
+        shrink("dir.points_per_vpl", &mut dir.points_per_vpl, &points_fit, 16);
+    }
+    check_scene_buffers(scene, device)?;
+    let estimate = estimate(scene, &settings, &output);
+    let budget = session.limits.gpu_bytes();
+    if estimate.total() > budget {
+        bail!(
+            "rendering this session needs about {} MiB of GPU memory ({}), more than `limits.gpu_mib` = {} \
+             (raise it with --set limits.gpu_mib=N, or lower the output size or the settings named)",
+            estimate.total() >> 20,
+            estimate.largest(),
+            budget >> 20
+        );
+    }
+    Ok((settings, output, warnings))
+}
+
+/// The scene's own buffers and textures: geometry in single bindings, textures in two arrays.
+fn check_scene_buffers(scene: &Scene, device: DeviceLimits) -> Result<()> {
+    let (vertices, indices, triangles) = geometry_counts(scene);
+    for (what, bytes) in [
+        (format!("{vertices} vertices"), vertices * VERTEX_BYTES),
+        (format!("{indices} indices"), indices * INDEX_BYTES),
+        (format!("{triangles} placed triangles"), triangles * TRIANGLE_BYTES),
+        (format!("{} placed primitives", scene.instances.len()), scene.instances.len() as u64 * INSTANCE_BYTES),
+        (format!("{} materials", scene.materials.len()), scene.materials.len() as u64 * MATERIAL_BYTES),
+    ] {
+        if bytes > device.max_binding {
+            bail!(
+                "the scene's {what} need {} MiB in one GPU buffer; this device binds at most {} MiB",
+                bytes >> 20,
+                device.max_binding >> 20
+            );
+        }
+    }
+    let srgb = scene.textures.iter().filter(|t| t.srgb).count();
+    let linear = scene.textures.len() - srgb;
+    if srgb.max(linear) > device.max_array_layers as usize {
+        bail!(
+            "the scene has {srgb} colour and {linear} data textures; this device holds at most {} of each",
+            device.max_array_layers
+        );
+    }
+    Ok(())
+}
+
+/// Vertices and indices of all primitives, triangles of all instances.
+fn geometry_counts(scene: &Scene) -> (u64, u64, u64) {
+    let vertices = scene.primitives.iter().map(|p| p.positions.len() as u64).sum();
+    let indices = scene.primitives.iter().map(|p| p.indices.len() as u64).sum();
+    let triangles = scene.instances.iter().map(|i| scene.primitives[i.primitive].indices.len() as u64 / 3).sum();
+    (vertices, indices, triangles)
+}
+
+/// The largest GPU allocations of a session, by what sizes them.
+struct Estimate(Vec<(&'static str, u64)>);
+
+impl Estimate {
+    fn total(&self) -> u64 {
+        self.0.iter().map(|(_, b)| b).sum()
+    }
+
+    /// The two largest items, in MiB.
+    fn largest(&self) -> String {
+        let mut items = self.0.clone();
+        items.sort_by_key(|(_, b)| std::cmp::Reverse(*b));
+        let shown: Vec<String> = items.iter().take(2).map(|(what, b)| format!("{what}: {} MiB", b >> 20)).collect();
+        shown.join(", ")
+    }
+}
+
+/// GPU bytes of `scene` rendered at `output` with `settings`, item by item.
+fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Estimate {
+    let layers = shadow_layer_count(scene);
+    let (vertices, indices, triangles) = geometry_counts(scene);
+    let internal = output.width as u64 * output.height as u64 * (output.supersample as u64).pow(2);
+    let texture_bytes: u64 = scene.textures.iter().map(|t| t.width as u64 * t.height as u64 * 4 * 4 / 3).sum();
+    let res = settings.shadows.resolution as u64;
+    let mut items = vec![
+        ("screen targets (output size × supersample²)", internal * SCREEN_BYTES),
+        ("output images", output.width as u64 * output.height as u64 * OUTPUT_BYTES),
+        ("shadow maps (lights × shadows.resolution²)", layers * (res * res * 8 + VIEW_BYTES)),
+        (
+            "geometry",
+            vertices * VERTEX_BYTES
+                + indices * INDEX_BYTES
+                + triangles * TRIANGLE_BYTES
+                + scene.instances.len() as u64 * INSTANCE_BYTES,
+        ),
+        ("textures", texture_bytes),
+    ];
+    if settings.method == Method::Dir {
+        let d = &settings.dir;
+        let rsm = d.rsm_resolution as u64;
+        let tiles = ((d.vpl_count as f64).sqrt().ceil() as u64).pow(2);
+        let ism = d.ism_resolution as u64;
+        items.extend([
+            ("dir screen targets (output size × supersample²)", internal * DIR_SCREEN_BYTES),
+            ("RSMs (lights × dir.rsm_resolution²)", layers * (rsm * rsm * (8 + rsm::TEXEL_BYTES + 11) + VIEW_BYTES)),
+            ("ISM atlases (dir.vpl_count × dir.ism_resolution²)", 2 * tiles * ism * ism * 4),
+            (
+                "ISM points (dir.vpl_count × dir.points_per_vpl)",
+                2 * d.vpl_count as u64 * d.points_per_vpl as u64 * POINT_BYTES,
+            ),
+        ]);
+    }
+    Estimate(items)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::{Mat4, Vec3};
+    use mrshade_core::HdrImage;
+    use mrshade_core::flags::Realness;
+
+    const SMALL_DEVICE: DeviceLimits =
+        DeviceLimits { max_binding: 128 << 20, max_texture_side: 8192, max_array_layers: 256 };
+
+    fn session(lights: usize, width: u32) -> Session {
+        let mut scene = Scene::default();
+        for i in 0..lights {
+            scene.lights.push(mrshade_scene::Light {
+                name: format!("lamp{i}"),
+                kind: LightKind::Point,
+                intensity: Vec3::ONE,
+                world_from_light: Mat4::IDENTITY,
+                realness: Realness::Real,
+            });
+        }
+        let height = width * 3 / 4;
+        Session {
+            origin: "test".into(),
+            scene,
+            camera: 0,
+            background: HdrImage::filled(1, 1, [0.0; 3]),
+            exposure: 1.0,
+            environment: None,
+            output: OutputSize { width, height, supersample: 1, frames: 1 },
+            settings: RenderSettings::default(),
+            limits: Default::default(),
+            warnings: Vec::new(),
+        }
+    }
 
     #[test]
     fn oversized_maps_are_halved_with_a_warning() {
-        let mut scene = Scene::default();
-        scene.lights.push(mrshade_scene::Light {
-            name: "lamp".into(),
-            kind: LightKind::Point,
-            intensity: glam::Vec3::ONE,
-            world_from_light: glam::Mat4::IDENTITY,
-            realness: mrshade_core::flags::Realness::Real,
-        });
-        let settings = RenderSettings::default();
-        let (fitted, warnings) = fit_to_device(&settings, &scene, 128 << 20);
+        let (fitted, _, warnings) = fit_to_device(&session(1, 640), SMALL_DEVICE).unwrap();
         // 12 layers × 2048² × 8 B = 384 MiB > 128 MiB: 1024² (96 MiB) fits.
         assert_eq!(fitted.shadows.resolution, 1024);
         assert!(warnings.iter().any(|w| w.contains("shadows.resolution = 2048")), "{warnings:?}");
-        let (same, none) = fit_to_device(&settings, &Scene::default(), 128 << 20);
-        assert_eq!(same, settings);
+        let (same, _, none) = fit_to_device(&session(0, 640), SMALL_DEVICE).unwrap();
+        assert_eq!(same, RenderSettings::default());
         assert!(none.is_empty());
+    }
+
+    #[test]
+    fn what_cannot_shrink_is_an_error_naming_the_input() {
+        // 10,000 point lights: 120,000 layers do not fit even at 64² texels.
+        let err = fit_to_device(&session(10_000, 64), SMALL_DEVICE).unwrap_err().to_string();
+        assert!(err.contains("10000 lights") && err.contains("120000"), "{err}");
+        // Supersampling shrinks first; a too-large output is an error.
+        let mut big = session(0, 4096);
+        big.output.supersample = 4;
+        let (_, output, warnings) = fit_to_device(&big, SMALL_DEVICE).unwrap();
+        assert_eq!(output.supersample, 1);
+        assert!(warnings.iter().any(|w| w.contains("output.supersample = 4")), "{warnings:?}");
+        let err = fit_to_device(&session(0, 16384), SMALL_DEVICE).unwrap_err().to_string();
+        assert!(err.contains("16384×12288"), "{err}");
+    }
+
+    #[test]
+    fn the_gpu_budget_is_checked_before_allocation() {
+        let mut s = session(0, 4096);
+        s.limits.gpu_mib = 256;
+        let err = fit_to_device(&s, DeviceLimits { max_binding: 1 << 40, ..SMALL_DEVICE }).unwrap_err().to_string();
+        assert!(err.contains("`limits.gpu_mib` = 256") && err.contains("screen targets"), "{err}");
+        // The defaults render 1080p with room to spare.
+        fit_to_device(&session(2, 1920), SMALL_DEVICE).unwrap();
     }
 }

@@ -41,13 +41,13 @@ pub struct Renderer {
 impl Renderer {
     /// Uploads `session` and builds every pass. GPU errors become `Err`.
     pub fn new(ctx: &GpuContext, session: &Session) -> Result<Self> {
-        let max_binding = ctx.device.limits().max_storage_buffer_binding_size;
-        let (settings, warnings) = crate::limits::fit_to_device(&session.settings, &session.scene, max_binding);
+        let device_limits = crate::limits::DeviceLimits::from(&ctx.device.limits());
+        let (settings, output, warnings) = crate::limits::fit_to_device(session, device_limits)?;
         let fitted;
         let session = if warnings.is_empty() {
             session
         } else {
-            fitted = Session { settings, ..session.clone() };
+            fitted = Session { settings, output, ..session.clone() };
             &fitted
         };
         let mut renderer = ctx.checked("creating the renderer", || Ok(Self::build(ctx, session)))?;

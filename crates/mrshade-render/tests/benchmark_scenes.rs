@@ -30,7 +30,7 @@ fn render(name: &str) -> (f32, f32) {
     let dir = folder(name);
     // 48 frames, not the still's default 256, keep the suite fast.
     let overrides = SessionOverrides { set: vec!["output.frames=48".into()], ..Default::default() };
-    let session = Session::load_from(&AssetSource::Dir(dir.clone()), "session.toml", &overrides)
+    let session = Session::load_from(&AssetSource::dir(dir.clone()), "session.toml", &overrides)
         .unwrap_or_else(|e| panic!("{name}: {e:#}"));
     let r = Rendered::new(session);
     let c = r.renderer.read_composite(&r.ctx).unwrap();

@@ -20,7 +20,7 @@ fn check(name: &str, r: &Rendered) {
 
 #[test]
 fn demo_session() {
-    let demo = AssetSource::Dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo").into());
+    let demo = AssetSource::dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo"));
     // 48 frames, not the still's default 256, keep the suite fast.
     let overrides = SessionOverrides { width: Some(160), set: vec!["output.frames=48".into()], ..Default::default() };
     let session = Session::load_from(&demo, "session.toml", &overrides).unwrap();

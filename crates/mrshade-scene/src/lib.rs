@@ -10,6 +10,7 @@
 //! here panics on user data.
 
 pub mod assets;
+pub mod budget;
 pub mod gltf;
 pub mod images;
 pub mod model;

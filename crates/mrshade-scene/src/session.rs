@@ -23,18 +23,31 @@
 //! Parsing is strict: an unknown key, a wrong type, a missing file, or a photo whose aspect
 //! ratio does not match the camera is an error naming the file and the field.
 
+use crate::assets::ReadPolicy;
+use crate::budget::Budget;
 use crate::{AssetSource, Scene, gltf::load_gltf, images};
 use anyhow::{Context, Result, bail};
 use mrshade_core::HdrImage;
 use mrshade_core::settings::{
-    CompositeSettings, DirSettings, Method, ReferenceSettings, RenderSettings, ShadowSettings,
+    CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, RenderSettings, ShadowSettings,
 };
+use mrshade_core::text::number;
 use serde::Deserialize;
+use std::path::PathBuf;
 
 /// Largest accepted output side, in pixels.
 pub const MAX_OUTPUT_SIDE: u32 = 16384;
+/// Smallest accepted output side, in pixels. The real-time methods shade one sample at the
+/// centre of each pixel (× supersample²) while the photo is averaged over it; a pixel that
+/// covers much of the scene shows whatever lies at its centre (a 1×1 render of a desk was the
+/// white of a lamp-lit torus). Render larger and downscale.
+pub const MIN_OUTPUT_SIDE: u32 = 16;
 /// Relative aspect-ratio mismatch tolerated between photo, camera and output size.
 const ASPECT_TOLERANCE: f32 = 0.01;
+/// Largest session file read, in bytes (a session is a few lines of TOML).
+const MAX_SESSION_BYTES: u64 = 16 << 20;
+/// Range of `exposure`: outside it the camera values over- or underflow single precision.
+const EXPOSURE_RANGE: std::ops::RangeInclusive<f32> = 1e-12..=1e12;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -57,6 +70,8 @@ struct SessionFile {
     dir: DirSettings,
     #[serde(default)]
     reference: ReferenceSettings,
+    #[serde(default)]
+    limits: Limits,
 }
 
 #[derive(Deserialize)]
@@ -133,6 +148,8 @@ pub struct SessionOverrides {
     /// Accept an output size of another aspect ratio than the photo and camera, stretching
     /// the photo (for `bench`, which measures speed at standard sizes).
     pub stretch_photo: bool,
+    /// Folders that files may also be read from (`--allow-read`), besides the session's.
+    pub allow_read: Vec<PathBuf>,
 }
 
 /// A loaded, checked session: everything a renderer needs for one frame.
@@ -154,6 +171,8 @@ pub struct Session {
     pub output: OutputSize,
     /// Method and pass settings.
     pub settings: RenderSettings,
+    /// The input budgets the session was loaded with.
+    pub limits: Limits,
     /// What could not be honoured exactly (from the glTF and the probe).
     pub warnings: Vec<String>,
 }
@@ -161,9 +180,18 @@ pub struct Session {
 impl Session {
     /// Loads the session file at `path` on disk.
     pub fn load(path: &std::path::Path, overrides: &SessionOverrides) -> Result<Session> {
-        let folder = path.parent().map(|p| p.to_path_buf()).unwrap_or_default();
-        let file = path.file_name().context("the session path has no file name")?.to_string_lossy().into_owned();
-        Self::load_from(&AssetSource::Dir(folder), &file, overrides)
+        // `session.toml` alone has the parent "": the current folder.
+        let folder = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => std::path::PathBuf::from("."),
+        };
+        let file = path
+            .file_name()
+            .with_context(|| format!("session {}: the path names no file", path.display()))?
+            .to_string_lossy()
+            .into_owned();
+        let policy = ReadPolicy::new(std::slice::from_ref(&folder), MAX_SESSION_BYTES);
+        Self::load_from(&AssetSource::dir_with_policy(folder, policy), &file, overrides)
     }
 
     /// Loads the session file `rel` of `source`.
@@ -176,11 +204,19 @@ impl Session {
 fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: String) -> Result<Session> {
     let text = String::from_utf8(source.read(rel)?).context("the file is not UTF-8 text")?;
     let file = parse(&text, overrides)?;
-    let folder = source.folder_of(rel);
     let field = |name: &str| format!("field `{name}`");
+    file.limits.validate().map_err(anyhow::Error::msg)?;
+    let folder = readable_folder(source, rel, &file.limits, overrides);
+    let limits = file.limits;
 
-    if !(file.exposure.is_finite() && file.exposure > 0.0) {
-        bail!("{}: must be a positive number, got {}", field("exposure"), file.exposure);
+    if !EXPOSURE_RANGE.contains(&file.exposure) {
+        bail!(
+            "{}: must be a number between {:e} and {:e}, got {}",
+            field("exposure"),
+            EXPOSURE_RANGE.start(),
+            EXPOSURE_RANGE.end(),
+            number(file.exposure)
+        );
     }
     let settings = RenderSettings {
         method: overrides.method.unwrap_or(file.method),
@@ -191,7 +227,16 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
     };
     settings.validate().map_err(anyhow::Error::msg)?;
 
-    let scene = load_gltf(&folder, &file.scene).with_context(|| field("scene"))?;
+    let scene = load_gltf(&folder, &file.scene, &limits).with_context(|| field("scene"))?;
+    if scene.lights.len() > limits.lights as usize {
+        bail!(
+            "{}: the scene has {} lights, more than `limits.lights` = {} (each needs up to 12 shadow-map layers on \
+             the GPU; raise it with --set limits.lights=N)",
+            field("scene"),
+            scene.lights.len(),
+            limits.lights
+        );
+    }
     let camera = pick_camera(&scene, file.camera.as_deref()).with_context(|| field("camera"))?;
     // A weight for a source that does not exist (a misspelt light name) would be ignored.
     let sources: Vec<&str> =
@@ -200,7 +245,8 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         bail!("{}: no light or VPL source is named '{name}' (known: {})", field("dir.weights"), sources.join(", "));
     }
 
-    let photo = images::decode_photo(&folder.read(&file.background).with_context(|| field("background"))?)
+    let budget = Budget::new(&limits);
+    let photo = images::decode_photo(&folder.read(&file.background).with_context(|| field("background"))?, &budget)
         .with_context(|| format!("{}: {}", field("background"), folder.display(&file.background)))?;
     if let Some(aspect) = scene.cameras[camera].aspect_ratio.filter(|_| !overrides.stretch_photo) {
         check_aspect(photo.aspect(), aspect).with_context(|| {
@@ -213,7 +259,8 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
             )
         })?;
     }
-    let output = output_size(&file.output, overrides, &photo, settings.method).with_context(|| field("output"))?;
+    let output =
+        output_size(&file.output, overrides, &photo, settings.method, &budget).with_context(|| field("output"))?;
     let background = photo.resized(output.width, output.height);
 
     let mut warnings = scene.warnings.clone();
@@ -228,14 +275,49 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
                 bail!("{}: must be a finite number", field("environment.rotation_deg"));
             }
             let bytes = folder.read(&env.image).with_context(|| what.clone())?;
-            let (image, warning) =
-                images::decode_probe(&bytes).with_context(|| format!("{what}: {}", folder.display(&env.image)))?;
+            let (image, warning) = images::decode_probe(&bytes, &budget)
+                .with_context(|| format!("{what}: {}", folder.display(&env.image)))?;
+            if image.max_value() * env.intensity > images::MAX_RADIANCE {
+                bail!(
+                    "{}: {} × the probe's brightest value {} is larger than {:e}, beyond what mrshade computes with",
+                    field("environment.intensity"),
+                    number(env.intensity),
+                    number(image.max_value()),
+                    images::MAX_RADIANCE
+                );
+            }
             warnings.extend(warning.map(|w| format!("{}: {w}", folder.display(&env.image))));
             Some(Environment { image, rotation_deg: env.rotation_deg, intensity: env.intensity })
         }
     };
 
-    Ok(Session { origin, scene, camera, background, exposure: file.exposure, environment, output, settings, warnings })
+    Ok(Session {
+        origin,
+        scene,
+        camera,
+        background,
+        exposure: file.exposure,
+        environment,
+        output,
+        settings,
+        limits,
+        warnings,
+    })
+}
+
+/// The session's folder, readable under the session's folder, the folders `limits.allow_read`
+/// names (relative to it) and those given on the command line, with files of at most
+/// `limits.file_mib`.
+fn readable_folder(source: &AssetSource, rel: &str, limits: &Limits, overrides: &SessionOverrides) -> AssetSource {
+    match source.folder_of(rel) {
+        AssetSource::Dir { folder, .. } => {
+            let mut roots = vec![folder.clone()];
+            roots.extend(limits.allow_read.iter().map(|p| folder.join(p)));
+            roots.extend(overrides.allow_read.iter().cloned());
+            AssetSource::dir_with_policy(&folder, ReadPolicy::new(&roots, limits.file_bytes()))
+        }
+        embedded => embedded,
+    }
 }
 
 /// Parses the TOML after applying `--set` overrides to its table.
@@ -258,7 +340,8 @@ fn toml_error(text: &str, e: &toml::de::Error) -> anyhow::Error {
     let start = span.start.min(text.len());
     let line = text[..start].matches('\n').count() + 1;
     let source = text.lines().nth(line - 1).unwrap_or("").trim();
-    anyhow::anyhow!("line {line} (`{source}`): {message}")
+    let source = mrshade_core::text::printable(source);
+    anyhow::anyhow!("line {line} (`{source}`): {}", mrshade_core::text::printable(&message))
 }
 
 /// Applies one `dotted.key=value` override.
@@ -303,16 +386,46 @@ fn output_size(
     overrides: &SessionOverrides,
     photo: &HdrImage,
     method: Method,
+    budget: &Budget,
 ) -> Result<OutputSize> {
     let width = overrides.width.or(file.width);
     let height = overrides.height.or(file.height);
+    // What was asked for is checked as asked, before anything is derived from it.
+    for (name, v) in [("width", width), ("height", height)] {
+        if let Some(v) = v
+            && !(MIN_OUTPUT_SIDE..=MAX_OUTPUT_SIDE).contains(&v)
+        {
+            bail!("{name} must be between {MIN_OUTPUT_SIDE} and {MAX_OUTPUT_SIDE}, got {v}");
+        }
+    }
     let aspect = photo.aspect();
+    let derived = |v: f32, name: &str, from: &str, given: u32| -> Result<u32> {
+        let v = v.round() as u32;
+        if !(MIN_OUTPUT_SIDE..=MAX_OUTPUT_SIDE).contains(&v) {
+            bail!(
+                "{from} {given} gives a {name} of {v} at the photo's aspect ratio ({}×{}), outside \
+                 {MIN_OUTPUT_SIDE}..={MAX_OUTPUT_SIDE}",
+                photo.width,
+                photo.height
+            );
+        }
+        Ok(v)
+    };
     let (width, height) = match (width, height) {
-        (None, None) => (photo.width, photo.height),
-        (Some(w), None) => (w, ((w as f32 / aspect).round() as u32).max(1)),
-        (None, Some(h)) => (((h as f32 * aspect).round() as u32).max(1), h),
+        (None, None) => {
+            if photo.width.min(photo.height) < MIN_OUTPUT_SIDE {
+                bail!(
+                    "the photo is {}×{}; outputs are at least {MIN_OUTPUT_SIDE} pixels a side: give --width",
+                    photo.width,
+                    photo.height
+                );
+            }
+            (photo.width, photo.height)
+        }
+        (Some(w), None) => (w, derived(w as f32 / aspect, "height", "width", w)?),
+        (None, Some(h)) => (derived(h as f32 * aspect, "width", "height", h)?, h),
         (Some(w), Some(h)) => {
-            if w > 0 && h > 0 && !overrides.stretch_photo {
+            if !overrides.stretch_photo {
                 check_aspect(w as f32 / h as f32, aspect).with_context(|| {
                     format!("{w}×{h} does not have the photo's aspect ratio ({}×{})", photo.width, photo.height)
                 })?;
@@ -320,11 +433,7 @@ fn output_size(
             (w, h)
         }
     };
-    for (name, v) in [("width", width), ("height", height)] {
-        if v == 0 || v > MAX_OUTPUT_SIDE {
-            bail!("{name} must be between 1 and {MAX_OUTPUT_SIDE}, got {v}");
-        }
-    }
+    budget.check_image(width, height).context("the output size")?;
     let supersample = file.supersample.unwrap_or(1);
     if !(1..=4).contains(&supersample) {
         bail!("supersample must be between 1 and 4, got {supersample}");

@@ -10,7 +10,7 @@ fn error_of(b: &GltfBuilder, tamper: impl FnOnce(&std::path::Path)) -> String {
     let dir = tempfile::tempdir().unwrap();
     b.write_gltf(dir.path(), "scene");
     tamper(dir.path());
-    let err = load_gltf(&AssetSource::Dir(dir.path().into()), "scene.gltf").expect_err("must fail");
+    let err = load_gltf(&AssetSource::dir(dir.path()), "scene.gltf", &Default::default()).expect_err("must fail");
     let msg = format!("{err:#}");
     assert!(msg.contains("scene.gltf"), "the error names the file: {msg}");
     msg
@@ -71,7 +71,9 @@ fn index_out_of_range() {
     let mesh = b.mesh(&shape, None, true);
     b.node(json!({"mesh": mesh}));
     let msg = error_of(&b, |_| {});
-    assert!(msg.contains("index 99 is out of range"), "{msg}");
+    // The position of the bad index, not its value: values are bytes of a file that may not
+    // be the scene's.
+    assert!(msg.contains("index 2 of the index list is out of range for 4 vertices") && !msg.contains("99"), "{msg}");
 }
 
 #[test]
@@ -89,7 +91,7 @@ fn nan_positions() {
 fn not_json_and_empty_files() {
     for contents in [&b""[..], b"{ not json", b"glTF\x02\x00\x00\x00"] {
         let msg = error_of(&simple(), |d| std::fs::write(d.join("scene.gltf"), contents).unwrap());
-        assert!(msg.contains("empty") || msg.contains("not valid glTF"), "{msg}");
+        assert!(msg.contains("empty") || msg.contains("not valid glTF") || msg.contains("truncated"), "{msg}");
     }
 }
 

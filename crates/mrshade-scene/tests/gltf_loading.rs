@@ -10,7 +10,7 @@ use serde_json::json;
 fn load(b: &GltfBuilder) -> mrshade_scene::Scene {
     let dir = tempfile::tempdir().unwrap();
     b.write_gltf(dir.path(), "scene");
-    load_gltf(&AssetSource::Dir(dir.path().into()), "scene.gltf").unwrap()
+    load_gltf(&AssetSource::dir(dir.path()), "scene.gltf", &Default::default()).unwrap()
 }
 
 #[test]
@@ -121,7 +121,9 @@ fn textures_from_a_glb_buffer_view_are_decoded() {
     doc["images"] =
         json!([{"uri": format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(&png))}]);
     doc["textures"] = json!([{"source": 0}]);
-    let scene = load_gltf_bytes(&serde_json::to_vec(&doc).unwrap(), &AssetSource::Dir("/nonexistent".into())).unwrap();
+    let scene =
+        load_gltf_bytes(&serde_json::to_vec(&doc).unwrap(), &AssetSource::dir("/nonexistent"), &Default::default())
+            .unwrap();
     assert_eq!(scene.textures.len(), 2, "one texture per colour space");
     assert!(scene.textures[0].srgb && !scene.textures[1].srgb);
     assert_eq!(&scene.textures[0].rgba8[..4], &[255, 128, 0, 255]);
@@ -170,9 +172,9 @@ fn glb_and_data_uris_load_like_separate_files() {
     let mut b = GltfBuilder::new();
     let mesh = b.mesh(&cuboid([0.5, 0.5, 0.5]), None, true);
     b.node(json!({"mesh": mesh, "translation": [0, 0.5, 0]}));
-    let nowhere = AssetSource::Dir("/nonexistent".into());
-    let glb = load_gltf_bytes(&b.glb(), &nowhere).unwrap();
-    let embedded = load_gltf_bytes(&b.embedded_json(), &nowhere).unwrap();
+    let nowhere = AssetSource::dir("/nonexistent");
+    let glb = load_gltf_bytes(&b.glb(), &nowhere, &Default::default()).unwrap();
+    let embedded = load_gltf_bytes(&b.embedded_json(), &nowhere, &Default::default()).unwrap();
     let files = load(&b);
     for s in [&glb, &embedded] {
         assert_eq!(s.primitives[0].positions, files.primitives[0].positions);
@@ -194,7 +196,7 @@ fn unsupported_extensions_warn_by_name_and_required_ones_fail() {
     b.use_extension("KHR_texture_transform", true);
     let dir = tempfile::tempdir().unwrap();
     b.write_gltf(dir.path(), "scene");
-    let err = load_gltf(&AssetSource::Dir(dir.path().into()), "scene.gltf").unwrap_err();
+    let err = load_gltf(&AssetSource::dir(dir.path()), "scene.gltf", &Default::default()).unwrap_err();
     let msg = format!("{err:#}");
     assert!(msg.contains("requires KHR_texture_transform") && msg.contains("scene.gltf"), "{msg}");
 }

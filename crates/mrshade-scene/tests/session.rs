@@ -117,14 +117,32 @@ fn a_photo_with_another_aspect_than_the_camera_is_an_error() {
 
 #[test]
 fn output_size_follows_the_photo_aspect() {
-    let (_dir, path) = session_dir(Some(4.0 / 3.0), (32, 24));
-    let s = Session::load(&path, &SessionOverrides { width: Some(16), ..Default::default() }).unwrap();
-    assert_eq!((s.output.width, s.output.height), (16, 12));
-    assert_eq!((s.background.width, s.background.height), (16, 12), "the photo is resampled");
-    let msg = error(&path, &SessionOverrides { width: Some(16), height: Some(16), ..Default::default() });
+    let (_dir, path) = session_dir(Some(4.0 / 3.0), (64, 48));
+    let s = Session::load(&path, &SessionOverrides { width: Some(32), ..Default::default() }).unwrap();
+    assert_eq!((s.output.width, s.output.height), (32, 24));
+    assert_eq!((s.background.width, s.background.height), (32, 24), "the photo is resampled");
+    let msg = error(&path, &SessionOverrides { width: Some(32), height: Some(32), ..Default::default() });
     assert!(msg.contains("field `output`") && msg.contains("aspect"), "{msg}");
-    let msg = error(&path, &SessionOverrides { width: Some(0), ..Default::default() });
-    assert!(msg.contains("width must be between 1"), "{msg}");
+}
+
+#[test]
+fn output_sizes_are_checked_as_given_then_as_derived() {
+    let (_dir, path) = session_dir(Some(4.0 / 3.0), (64, 48));
+    let size = |width, height| SessionOverrides { width, height, ..Default::default() };
+    for (given, named) in [(size(Some(0), None), "width"), (size(None, Some(100_000)), "height")] {
+        let msg = error(&path, &given);
+        assert!(msg.contains(&format!("{named} must be between 16 and 16384")), "{msg}");
+    }
+    // A 1×1 render shows whatever lies at the centre of the frame: refused.
+    let msg = error(&path, &size(Some(16), None));
+    assert!(msg.contains("width 16 gives a height of 12"), "{msg}");
+    let msg = error(&path, &size(None, Some(16000)));
+    assert!(msg.contains("height 16000 gives a width of 21333"), "{msg}");
+    // Within the side limits but past the pixel budget.
+    let big =
+        SessionOverrides { width: Some(16384), set: vec!["limits.image_pixels=1000000".into()], ..Default::default() };
+    let msg = error(&path, &big);
+    assert!(msg.contains("16384×12288") && msg.contains("limits.image_pixels"), "{msg}");
 }
 
 #[test]

@@ -297,27 +297,51 @@ impl GltfBuilder {
 
     /// The document as a binary `.glb`.
     pub fn glb(&self) -> Vec<u8> {
-        let mut json = serde_json::to_vec(&self.json(None)).expect("json");
-        while !json.len().is_multiple_of(4) {
-            json.push(b' ');
-        }
-        let mut bin = self.bin.clone();
-        while !bin.len().is_multiple_of(4) {
-            bin.push(0);
-        }
-        let total = 12 + 8 + json.len() + 8 + bin.len();
-        let mut out = Vec::with_capacity(total);
-        out.extend_from_slice(b"glTF");
-        out.extend_from_slice(&2u32.to_le_bytes());
-        out.extend_from_slice(&(total as u32).to_le_bytes());
-        out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"JSON");
-        out.extend_from_slice(&json);
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"BIN\0");
-        out.extend_from_slice(&bin);
-        out
+        pack_glb(&serde_json::to_vec(&self.json(None)).expect("json"), &self.bin)
     }
+}
+
+/// A binary glTF (`.glb`, glTF 2.0 §4.4) of a JSON chunk and a BIN chunk, each padded to four
+/// bytes (JSON with spaces, BIN with zeros).
+pub fn pack_glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let pad = |bytes: &[u8], with: u8| {
+        let mut v = bytes.to_vec();
+        while !v.len().is_multiple_of(4) {
+            v.push(with);
+        }
+        v
+    };
+    let (json, bin) = (pad(json, b' '), pad(bin, 0));
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}
+
+/// The JSON and BIN chunks of a `.glb`, read leniently (for tests that take a file apart and
+/// change it; the loader's own reading is strict).
+pub fn unpack_glb(glb: &[u8]) -> (Vec<u8>, Vec<u8>) {
+    let word = |at: usize| glb.get(at..at + 4).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
+    let (mut json, mut bin) = (Vec::new(), Vec::new());
+    let mut at = 12;
+    while let (Some(len), Some(kind)) = (word(at), word(at + 4)) {
+        let chunk = glb.get(at + 8..(at + 8).saturating_add(len)).unwrap_or_default();
+        match &(kind as u32).to_le_bytes() {
+            b"JSON" => json = chunk.to_vec(),
+            b"BIN\0" => bin = chunk.to_vec(),
+            _ => {}
+        }
+        at = at + 8 + len;
+    }
+    (json, bin)
 }
 
 /// Lambertian material JSON (`KHR_materials_specular` 0) of linear `color`.

@@ -69,6 +69,10 @@ pub struct SessionArgs {
     /// Override any session setting, e.g. `--set shadows.resolution=4096` (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Also read files under this folder (repeatable). By default a session and its glTF
+    /// files read only under their own folders.
+    #[arg(long, value_name = "FOLDER")]
+    pub allow_read: Vec<PathBuf>,
     /// Set by commands that may change the aspect ratio (bench); not a flag.
     #[arg(skip)]
     pub stretch_photo: bool,
@@ -163,6 +167,12 @@ pub struct EvalArgs {
     /// Override any session setting (repeatable), as `render --set`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Also read files under this folder (repeatable), as `render --allow-read`.
+    #[arg(long, value_name = "FOLDER")]
+    pub allow_read: Vec<PathBuf>,
+    /// Largest image scored, in pixels (FLIP takes about 120 bytes per pixel).
+    #[arg(long, value_name = "N", default_value_t = mrshade_eval::metrics::DEFAULT_MAX_PIXELS)]
+    pub max_pixels: u64,
     /// Write report.md, report.json, index.html and the images here.
     #[arg(long, value_name = "DIR")]
     pub report: Option<PathBuf>,
@@ -194,4 +204,8 @@ pub struct CompareArgs {
     /// Print the scores as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Largest image scored, in pixels: FLIP takes about 120 bytes per pixel, so the default
+    /// 16 Mi pixels (4096 × 4096) take 2 GiB.
+    #[arg(long, value_name = "N", default_value_t = mrshade_eval::metrics::DEFAULT_MAX_PIXELS)]
+    pub max_pixels: u64,
 }

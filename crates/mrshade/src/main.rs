@@ -10,10 +10,26 @@ mod output;
 use clap::Parser;
 
 fn main() {
+    // A panic is a bug in mrshade; still, it is reported as one line, like any error.
+    std::panic::set_hook(Box::new(|info| {
+        let message = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        let at = info.location().map(|l| format!(" at {}:{}", l.file(), l.line())).unwrap_or_default();
+        eprintln!("error: internal error (a bug in mrshade, please report it): {}{at}", one_line(&message));
+    }));
     let cli = args::Cli::parse();
     if let Err(e) = cmd::run(cli) {
-        // One line, whatever the messages in the chain hold.
-        eprintln!("error: {}", format!("{e:#}").replace('\n', " "));
+        eprintln!("error: {}", one_line(&format!("{e:#}")));
         std::process::exit(1);
     }
+}
+
+/// One line, whatever the messages in the chain hold: newlines become spaces, and every other
+/// control character is escaped (names and paths come from files).
+fn one_line(message: &str) -> String {
+    mrshade_core::text::printable(&message.replace('\n', " ")).into_owned()
 }

@@ -76,6 +76,11 @@ impl Default for TemporalSettings {
     }
 }
 
+/// Most surface points in each ISM cloud (`vpl_count × points_per_vpl`): 4 Mi points are
+/// 128 MiB per cloud on the GPU, what many devices bind in one buffer; the thesis uses
+/// 256 × 1024 = 256 Ki.
+pub const MAX_ISM_POINTS: u64 = 1 << 22;
+
 /// Settings of the `dir` method.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -171,6 +176,18 @@ impl DirSettings {
             "dir.points_per_vpl",
             format!("must be between 16 and 65536, got {}", self.points_per_vpl),
         )?;
+        let points = self.vpl_count as u64 * self.points_per_vpl as u64;
+        check(
+            points <= MAX_ISM_POINTS,
+            "dir.points_per_vpl",
+            format!(
+                "× dir.vpl_count = {} × {} = {points} points per cloud, more than {MAX_ISM_POINTS} \
+                 (each of the two clouds would take {} MiB); lower one of them",
+                self.points_per_vpl,
+                self.vpl_count,
+                (points * 32) >> 20
+            ),
+        )?;
         check(
             self.rsm_resolution.is_power_of_two() && (4..=2048).contains(&self.rsm_resolution),
             "dir.rsm_resolution",
@@ -241,6 +258,11 @@ mod tests {
         assert!(d.validate().unwrap_err().contains("dir.rsm_resolution"));
         let d = DirSettings { vpl_count: 8, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.vpl_count"));
+        // Each valid alone, too many together (8 GB of points).
+        let d = DirSettings { vpl_count: 4096, points_per_vpl: 65536, ..Default::default() };
+        let err = d.validate().unwrap_err();
+        assert!(err.contains("dir.points_per_vpl") && err.contains("dir.vpl_count"), "{err}");
+        DirSettings { vpl_count: 4096, points_per_vpl: 1024, ..Default::default() }.validate().unwrap();
         let mut d = DirSettings::default();
         d.temporal.base_confidence = 1.0;
         assert!(d.validate().unwrap_err().contains("base_confidence"));

@@ -6,11 +6,13 @@
 
 mod composite;
 mod dir;
+mod limits;
 mod reference;
 mod shadows;
 
 pub use composite::{CompositeMode, CompositeSettings};
-pub use dir::{BounceMethod, DirSettings, Distribution, TemporalSettings};
+pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
+pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;
 

@@ -104,6 +104,7 @@ impl Builder {
             environment: self.environment.clone(),
             output: OutputSize { width, height, supersample: 1, frames: 1 },
             settings: RenderSettings { reference: settings, ..RenderSettings::default() },
+            limits: Default::default(),
             warnings: Vec::new(),
         }
     }

@@ -172,7 +172,7 @@ impl Geometry {
             .zip(self.current.iter().zip(&self.previous))
             .map(|(&(info, _), (&now, &before))| GpuInstance {
                 world_from_object: now,
-                normal_from_object: now.inverse().transpose(),
+                normal_from_object: mrshade_core::math::normal_from_object(now),
                 previous_world_from_object: before,
                 info,
             })

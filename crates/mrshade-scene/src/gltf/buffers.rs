@@ -2,6 +2,7 @@
 
 use super::describe;
 use crate::AssetSource;
+use crate::budget::Budget;
 use anyhow::{Context, Result, bail};
 use base64::Engine;
 
@@ -10,10 +11,12 @@ pub fn load_buffers(
     document: &gltf::Document,
     mut blob: Option<Vec<u8>>,
     folder: &AssetSource,
+    budget: &mut Budget,
 ) -> Result<Vec<Vec<u8>>> {
     let mut out = Vec::new();
     for buffer in document.buffers() {
         let what = format!("buffer {}", describe(Some(buffer.index()), buffer.name()));
+        budget.charge(&what, buffer.length() as u64, 1)?;
         let data = match buffer.source() {
             gltf::buffer::Source::Bin => {
                 blob.take().with_context(|| format!("{what} refers to the GLB BIN chunk, which is missing"))?
@@ -33,12 +36,14 @@ pub fn read_uri(uri: &str, folder: &AssetSource) -> Result<Vec<u8>> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (meta, payload) = rest.split_once(',').context("malformed data URI (no ',' separator)")?;
         if !meta.ends_with(";base64") {
-            bail!("data URI is not base64-encoded ({meta})");
+            bail!("data URI is not base64-encoded ({})", mrshade_core::text::printable(meta));
         }
-        return base64::engine::general_purpose::STANDARD.decode(payload).context("data URI holds invalid base64");
+        return base64::engine::general_purpose::STANDARD
+            .decode(payload)
+            .map_err(|_| anyhow::anyhow!("data URI holds invalid base64"));
     }
     if uri.contains("://") {
-        bail!("URI {uri} is not a relative path; mrshade reads local files only");
+        bail!("URI {} is not a relative path; mrshade reads local files only", mrshade_core::text::printable(uri));
     }
     folder.read(&percent_decode(uri))
 }
@@ -93,7 +98,7 @@ mod tests {
 
     #[test]
     fn data_uris() {
-        let folder = AssetSource::Dir("/nonexistent".into());
+        let folder = AssetSource::dir("/nonexistent");
         let bytes = read_uri("data:application/octet-stream;base64,AAEC", &folder).unwrap();
         assert_eq!(bytes, vec![0, 1, 2]);
         assert!(read_uri("data:text/plain,hello", &folder).is_err());

@@ -2,6 +2,8 @@
 
 use super::buffers::{read_uri, view_bytes};
 use super::describe;
+use crate::budget::Budget;
+use crate::images::{MAX_RADIANCE, decode_rgba8};
 use crate::{AlphaMode, AssetSource, Material, Texture, TextureRef};
 use anyhow::{Context, Result, bail};
 use glam::{Vec3, Vec4};
@@ -22,12 +24,13 @@ impl TextureCache {
         srgb: bool,
         buffers: &[Vec<u8>],
         folder: &AssetSource,
+        budget: &mut Budget,
     ) -> Result<TextureRef> {
         let key = (info_texture.index(), srgb);
         if let Some(&texture) = self.by_key.get(&key) {
             return Ok(TextureRef { texture });
         }
-        let texture = decode_texture(&info_texture, srgb, buffers, folder)
+        let texture = decode_texture(&info_texture, srgb, buffers, folder, budget)
             .with_context(|| format!("texture {}", describe(Some(info_texture.index()), info_texture.name())))?;
         self.textures.push(texture);
         self.by_key.insert(key, self.textures.len() - 1);
@@ -40,18 +43,20 @@ impl TextureCache {
     }
 }
 
-fn decode_texture(texture: &gltf::Texture, srgb: bool, buffers: &[Vec<u8>], folder: &AssetSource) -> Result<Texture> {
+fn decode_texture(
+    texture: &gltf::Texture,
+    srgb: bool,
+    buffers: &[Vec<u8>],
+    folder: &AssetSource,
+    budget: &mut Budget,
+) -> Result<Texture> {
     let image = texture.source();
     let bytes = match image.source() {
         gltf::image::Source::View { view, .. } => view_bytes(&view, buffers)?.to_vec(),
         gltf::image::Source::Uri { uri, .. } => read_uri(uri, folder)?,
     };
-    let decoded = image::load_from_memory(&bytes)
-        .with_context(|| format!("image {} cannot be decoded", describe(Some(image.index()), image.name())))?
-        .to_rgba8();
-    if decoded.width() == 0 || decoded.height() == 0 {
-        bail!("image {} is empty", image.index());
-    }
+    let decoded = decode_rgba8(&bytes, budget)
+        .with_context(|| format!("image {} cannot be decoded", describe(Some(image.index()), image.name())))?;
     use gltf::texture::WrappingMode;
     let sampler = texture.sampler();
     Ok(Texture {
@@ -71,6 +76,7 @@ pub fn load_material(
     buffers: &[Vec<u8>],
     folder: &AssetSource,
     textures: &mut TextureCache,
+    budget: &mut Budget,
     warnings: &mut Vec<String>,
 ) -> Result<Material> {
     let name = m.name().map(str::to_string).unwrap_or_else(|| format!("material {}", m.index().unwrap_or(0)));
@@ -83,18 +89,20 @@ pub fn load_material(
             ));
             return Ok(None);
         }
-        textures.get(info.texture(), srgb, buffers, folder).map(Some)
+        textures.get(info.texture(), srgb, buffers, folder, budget).map(Some)
     };
     let pbr = m.pbr_metallic_roughness();
     let base_color_texture = slot(pbr.base_color_texture(), true, "baseColorTexture")?;
     let metallic_roughness_texture = slot(pbr.metallic_roughness_texture(), false, "metallicRoughnessTexture")?;
     let emissive_texture = slot(m.emissive_texture(), true, "emissiveTexture")?;
     let normal_texture = match m.normal_texture() {
-        Some(n) if n.tex_coord() == 0 => Some((textures.get(n.texture(), false, buffers, folder)?, n.scale())),
+        Some(n) if n.tex_coord() == 0 => Some((textures.get(n.texture(), false, buffers, folder, budget)?, n.scale())),
         _ => None,
     };
     let occlusion_texture = match m.occlusion_texture() {
-        Some(o) if o.tex_coord() == 0 => Some((textures.get(o.texture(), false, buffers, folder)?, o.strength())),
+        Some(o) if o.tex_coord() == 0 => {
+            Some((textures.get(o.texture(), false, buffers, folder, budget)?, o.strength()))
+        }
         _ => None,
     };
 
@@ -150,6 +158,12 @@ pub fn load_material(
     Ok(material)
 }
 
+/// Largest normal-map scale accepted: past it every normal lies in the tangent plane, and far
+/// past it (1e39) the arithmetic overflows.
+const MAX_NORMAL_SCALE: f32 = 1000.0;
+/// Largest index of refraction accepted (real materials stay below 5).
+const MAX_IOR: f32 = 100.0;
+
 fn check_ranges(m: &Material) -> Result<()> {
     let unit = |v: f32, what: &str| -> Result<()> {
         if !(0.0..=1.0).contains(&v) {
@@ -166,8 +180,24 @@ fn check_ranges(m: &Material) -> Result<()> {
     for (i, c) in m.attenuation_color.to_array().iter().enumerate() {
         unit(*c, &format!("attenuationColor[{i}]"))?;
     }
-    if !(m.emissive.is_finite() && m.emissive.min_element() >= 0.0) {
-        bail!("emissive {:?} must be finite and ≥ 0", m.emissive);
+    if !(m.emissive.is_finite() && m.emissive.min_element() >= 0.0 && m.emissive.max_element() <= MAX_RADIANCE) {
+        bail!(
+            "emissive {} (emissiveFactor × emissiveStrength, largest channel) must be between 0 and {MAX_RADIANCE:e}",
+            mrshade_core::text::number(m.emissive.max_element())
+        );
+    }
+    if let Some((_, scale)) = m.normal_texture
+        && !(scale.is_finite() && scale.abs() <= MAX_NORMAL_SCALE)
+    {
+        bail!("normalTexture.scale {scale} must be between −{MAX_NORMAL_SCALE} and {MAX_NORMAL_SCALE}");
+    }
+    if let Some((_, strength)) = m.occlusion_texture {
+        unit(strength, "occlusionTexture.strength")?;
+    }
+    if let AlphaMode::Mask(cutoff) = m.alpha_mode
+        && !(cutoff.is_finite() && cutoff >= 0.0)
+    {
+        bail!("alphaCutoff {cutoff} must be ≥ 0");
     }
     if !(m.specular.is_finite()
         && m.specular >= 0.0
@@ -176,8 +206,8 @@ fn check_ranges(m: &Material) -> Result<()> {
     {
         bail!("KHR_materials_specular factors must be finite and ≥ 0");
     }
-    if !(m.ior == 0.0 || (m.ior.is_finite() && m.ior >= 1.0)) {
-        bail!("ior {} must be ≥ 1 (or 0)", m.ior);
+    if !(m.ior == 0.0 || (1.0..=MAX_IOR).contains(&m.ior)) {
+        bail!("ior {} must be between 1 and {MAX_IOR} (or 0)", m.ior);
     }
     if !(m.thickness.is_finite() && m.thickness >= 0.0) {
         bail!("thicknessFactor {} must be ≥ 0", m.thickness);

@@ -1,6 +1,7 @@
 //! Mesh primitives: checked attribute reads, triangle assembly, flat normals when missing.
 
 use super::{accessors, describe};
+use crate::budget::Budget;
 use crate::{Primitive, Scene};
 use anyhow::{Context, Result, bail};
 use glam::{Vec2, Vec3};
@@ -13,6 +14,7 @@ pub fn load_meshes(
     document: &gltf::Document,
     buffers: &[Vec<u8>],
     default_material: usize,
+    budget: &mut Budget,
     scene: &mut Scene,
 ) -> Result<Vec<Vec<usize>>> {
     let mut per_mesh = Vec::new();
@@ -21,7 +23,7 @@ pub fn load_meshes(
         for prim in mesh.primitives() {
             let name = format!("mesh {} primitive {}", describe(Some(mesh.index()), mesh.name()), prim.index());
             let material = prim.material().index().unwrap_or(default_material);
-            match read_primitive(&prim, buffers, &name, material).with_context(|| name.clone())? {
+            match read_primitive(&prim, buffers, &name, material, budget).with_context(|| name.clone())? {
                 Some(p) => {
                     ids.push(scene.primitives.len());
                     scene.primitives.push(p);
@@ -39,6 +41,7 @@ fn read_primitive(
     buffers: &[Vec<u8>],
     name: &str,
     material: usize,
+    budget: &mut Budget,
 ) -> Result<Option<Primitive>> {
     if !matches!(prim.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
         return Ok(None);
@@ -46,22 +49,23 @@ fn read_primitive(
     let reader = prim.reader(|b| buffers.get(b.index()).map(|v| v.as_slice()));
 
     let pos_accessor = prim.get(&gltf::Semantic::Positions).context("no POSITION attribute")?;
-    accessors::check(&pos_accessor, "POSITION", Dimensions::Vec3, &[DataType::F32], buffers)?;
+    accessors::check(&pos_accessor, "POSITION", Dimensions::Vec3, &[DataType::F32], buffers, budget)?;
     let positions: Vec<Vec3> = reader.read_positions().context("POSITION data out of range")?.map(Vec3::from).collect();
     if positions.iter().any(|p| !p.is_finite()) {
         bail!("POSITION holds NaN or infinite values");
     }
+    check_bounds(&pos_accessor, &positions)?;
 
     let normals = match prim.get(&gltf::Semantic::Normals) {
         Some(acc) => {
-            accessors::check(&acc, "NORMAL", Dimensions::Vec3, &[DataType::F32], buffers)?;
+            accessors::check(&acc, "NORMAL", Dimensions::Vec3, &[DataType::F32], buffers, budget)?;
             check_count(acc.count(), positions.len(), "NORMAL")?;
-            let n: Vec<Vec3> = reader
-                .read_normals()
-                .context("NORMAL data out of range")?
-                .map(|n| Vec3::from(n).normalize_or(Vec3::Y))
-                .collect();
-            Some(n)
+            let n: Vec<Vec3> = reader.read_normals().context("NORMAL data out of range")?.map(Vec3::from).collect();
+            if n.iter().any(|n| !n.is_finite()) {
+                bail!("NORMAL holds NaN or infinite values");
+            }
+            // Zero normals (degenerate triangles of some exporters) point up rather than nowhere.
+            Some(n.into_iter().map(|n| n.normalize_or(Vec3::Y)).collect())
         }
         None => None,
     };
@@ -74,15 +78,23 @@ fn read_primitive(
                 Dimensions::Vec2,
                 &[DataType::F32, DataType::U8, DataType::U16],
                 buffers,
+                budget,
             )?;
             if acc.data_type() != DataType::F32 && !acc.normalized() {
                 bail!("TEXCOORD_0 accessor {} holds integers that are not normalized", acc.index());
             }
             check_count(acc.count(), positions.len(), "TEXCOORD_0")?;
-            let uv = reader.read_tex_coords(0).context("TEXCOORD_0 data out of range")?;
-            uv.into_f32().map(Vec2::from).collect()
+            let uv: Vec<Vec2> =
+                reader.read_tex_coords(0).context("TEXCOORD_0 data out of range")?.into_f32().map(Vec2::from).collect();
+            if uv.iter().any(|t| !t.is_finite()) {
+                bail!("TEXCOORD_0 holds NaN or infinite values");
+            }
+            uv
         }
-        None => vec![Vec2::ZERO; positions.len()],
+        None => {
+            budget.charge("TEXCOORD_0 (zeros)", positions.len() as u64, 8)?;
+            vec![Vec2::ZERO; positions.len()]
+        }
     };
 
     let raw_indices: Vec<u32> = match prim.indices() {
@@ -93,14 +105,21 @@ fn read_primitive(
                 Dimensions::Scalar,
                 &[DataType::U8, DataType::U16, DataType::U32],
                 buffers,
+                budget,
             )?;
             reader.read_indices().context("index data out of range")?.into_u32().collect()
         }
-        None => (0..positions.len() as u32).collect(),
+        None => {
+            budget.charge("indices (implicit)", positions.len() as u64, 4)?;
+            (0..positions.len() as u32).collect()
+        }
     };
-    if let Some(&bad) = raw_indices.iter().find(|&&i| i as usize >= positions.len()) {
-        bail!("index {bad} is out of range for {} vertices", positions.len());
+    // The position, not the value: a value is bytes of the file, which may be anything.
+    if let Some(at) = raw_indices.iter().position(|&i| i as usize >= positions.len()) {
+        bail!("index {at} of the index list is out of range for {} vertices", positions.len());
     }
+    // Strips and fans triple their indices.
+    budget.charge("the triangle list", raw_indices.len() as u64, 12)?;
     let indices = triangle_list(prim.mode(), &raw_indices);
     if indices.is_empty() {
         bail!("has no triangles");
@@ -109,9 +128,32 @@ fn read_primitive(
     let mut p = Primitive { name: name.to_string(), positions, normals: Vec::new(), uvs, indices, material };
     match normals {
         Some(n) => p.normals = n,
-        None => make_flat_normals(&mut p),
+        None => {
+            // One vertex (position, normal, uv) per corner.
+            budget.charge("flat normals", p.indices.len() as u64, 32)?;
+            make_flat_normals(&mut p)
+        }
     }
     Ok(Some(p))
+}
+
+/// glTF 2.0 §3.6.2.4: POSITION's `min` and `max` MUST bound its data. A file whose bounds do
+/// not is damaged or hand-edited; say so instead of trusting either.
+fn check_bounds(accessor: &gltf::Accessor, positions: &[Vec3]) -> Result<()> {
+    let as_vec3 = |v: Option<gltf::json::Value>| -> Option<Vec3> {
+        let a: Vec<f32> = serde_json::from_value(v?).ok()?;
+        (a.len() == 3).then(|| Vec3::new(a[0], a[1], a[2]))
+    };
+    let (Some(min), Some(max)) = (as_vec3(accessor.min()), as_vec3(accessor.max())) else {
+        return Ok(());
+    };
+    let (lo, hi) = positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    // Exporters round the bounds they write; allow for that.
+    let slack = 1e-4 * (max - min).abs().max_element().max(lo.abs().max(hi.abs()).max_element()).max(1e-3);
+    if (min - lo).max_element() > slack || (hi - max).max_element() > slack {
+        bail!("POSITION accessor {}: its min {min} and max {max} do not bound its data", accessor.index());
+    }
+    Ok(())
 }
 
 fn check_count(count: usize, expected: usize, what: &str) -> Result<()> {

@@ -3,14 +3,20 @@
 use crate::args::CompareArgs;
 use anyhow::{Context, Result};
 use mrshade_eval::metrics::{self, Rgb8};
+use mrshade_scene::AssetSource;
+use mrshade_scene::assets::{DEFAULT_MAX_FILE_BYTES, ReadPolicy};
+use mrshade_scene::budget::Budget;
 use std::path::Path;
 
 /// Prints FLIP, PSNR, RMSE and SSIM of `args.test` against `args.reference`.
 pub fn compare(args: &CompareArgs) -> Result<()> {
-    let reference = load(&args.reference)?;
-    let test = load(&args.test)?;
+    let max_pixels = args.max_pixels;
+    let reference = load(&args.reference, max_pixels)?;
+    let test = load(&args.test, max_pixels)?;
     let mask = match &args.mask {
-        Some(path) => Some(load(path)?.rgb.chunks_exact(3).map(|p| p.iter().any(|&c| c > 0)).collect::<Vec<bool>>()),
+        Some(path) => {
+            Some(load(path, max_pixels)?.rgb.chunks_exact(3).map(|p| p.iter().any(|&c| c > 0)).collect::<Vec<bool>>())
+        }
         None => None,
     };
     let misfit = |e: String| anyhow::anyhow!("{} against {}: {e}", args.test.display(), args.reference.display());
@@ -43,8 +49,17 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// An 8-bit sRGB image (alpha dropped).
-pub fn load(path: &Path) -> Result<Rgb8> {
-    let img = image::open(path).with_context(|| format!("cannot read image {}", path.display()))?.to_rgb8();
+/// An 8-bit sRGB image (alpha dropped) of at most `max_pixels`, checked from its header
+/// before it is decoded.
+pub fn load(path: &Path, max_pixels: u64) -> Result<Rgb8> {
+    let what = || format!("cannot read image {}", path.display());
+    // The user named this file: any folder may hold it.
+    let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
+    let name = path.file_name().with_context(|| format!("{} names no file", path.display()))?;
+    let source =
+        AssetSource::dir_with_policy(&folder, ReadPolicy::new(std::slice::from_ref(&folder), DEFAULT_MAX_FILE_BYTES));
+    let bytes = source.read(&name.to_string_lossy()).with_context(what)?;
+    let budget = Budget::images(max_pixels, "--max-pixels");
+    let img = mrshade_scene::images::decode_rgb8(&bytes, &budget).with_context(what)?;
     Ok(Rgb8 { width: img.width(), height: img.height(), rgb: img.into_raw() })
 }

@@ -42,8 +42,10 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     let mut rows = Vec::new();
     for (i, dir) in args.datasets.iter().enumerate() {
         let scene = dir.file_name().map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into_owned());
-        let answer = load_rgb8(&dir.join("ground_truth.png"))?;
-        let photo = load_rgb8(&dir.join("background.png"))?;
+        // Folder names reach the terminal and the report.
+        let scene = mrshade_core::text::printable(&scene).into_owned();
+        let answer = load_rgb8(&dir.join("ground_truth.png"), args.max_pixels)?;
+        let photo = load_rgb8(&dir.join("background.png"), args.max_pixels)?;
         if (photo.width, photo.height) != (answer.width, answer.height) {
             bail!("dataset {}: background.png and ground_truth.png differ in size", dir.display());
         }
@@ -107,6 +109,7 @@ fn load(dir: &Path, method: &str, args: &EvalArgs, answer: &Rgb8) -> Result<Sess
         method: real_time,
         set,
         stretch_photo: false,
+        allow_read: args.allow_read.clone(),
     };
     Session::load(&dir.join("session.toml"), &overrides)
 }

@@ -3,6 +3,7 @@
 use super::{Log, load_session};
 use crate::args::InfoArgs;
 use anyhow::Result;
+use mrshade_core::text::printable;
 
 /// Lists the adapters.
 pub fn adapters() -> Result<()> {
@@ -20,9 +21,9 @@ pub fn adapters() -> Result<()> {
 pub fn info(args: &InfoArgs, log: Log) -> Result<()> {
     let s = load_session(&args.session, log)?;
     let camera = &s.scene.cameras[s.camera];
-    println!("session    {}", s.origin);
+    println!("session    {}", printable(&s.origin));
     println!("output     {}×{} (supersample {})", s.output.width, s.output.height, s.output.supersample);
-    println!("camera     {} (yfov {:.1}°)", camera.node_name, camera.yfov.to_degrees());
+    println!("camera     {} (yfov {:.1}°)", printable(&camera.node_name), camera.yfov.to_degrees());
     println!("exposure   {}", s.exposure);
     println!("method     {}", s.settings.method.name());
     println!("composite  {}", s.settings.composite.mode.name());
@@ -38,16 +39,16 @@ pub fn info(args: &InfoArgs, log: Log) -> Result<()> {
     }
     for i in &s.scene.instances {
         let p = &s.scene.primitives[i.primitive];
-        let material = &s.scene.materials[p.material].name;
+        let material = printable(&s.scene.materials[p.material].name);
         println!(
             "object     {:<8} {} ({} triangles, {material})",
             format!("{:?}", i.realness).to_lowercase(),
-            i.node_name,
+            printable(&i.node_name),
             p.indices.len() / 3
         );
     }
     for l in &s.scene.lights {
-        println!("light      {:<8} {} {:?}", format!("{:?}", l.realness).to_lowercase(), l.name, l.kind);
+        println!("light      {:<8} {} {:?}", format!("{:?}", l.realness).to_lowercase(), printable(&l.name), l.kind);
     }
     Ok(())
 }

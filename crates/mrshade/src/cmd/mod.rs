@@ -10,6 +10,7 @@ mod render;
 use crate::args::{Cli, Command, SessionArgs};
 use anyhow::Result;
 use mrshade_core::settings::Method;
+use mrshade_core::text::printable;
 use mrshade_gpu::{GpuContext, GpuOptions};
 use mrshade_scene::{Session, SessionOverrides};
 
@@ -23,7 +24,7 @@ impl Log {
     /// A progress line.
     pub fn info(&self, msg: impl std::fmt::Display) {
         if !self.quiet {
-            eprintln!("mrshade: {msg}");
+            eprintln!("mrshade: {}", printable(&msg.to_string()));
         }
     }
 
@@ -35,7 +36,7 @@ impl Log {
     /// A warning line.
     pub fn warn(&self, msg: impl std::fmt::Display) {
         if !self.quiet {
-            eprintln!("warning: {msg}");
+            eprintln!("warning: {}", printable(&msg.to_string()));
         }
     }
 }
@@ -66,7 +67,14 @@ pub fn overrides(args: &SessionArgs) -> Result<SessionOverrides> {
         set.push(format!("output.supersample={n}"));
     }
     let method = args.method.as_deref().map(Method::from_name).transpose().map_err(anyhow::Error::msg)?;
-    Ok(SessionOverrides { width: args.width, height: args.height, method, set, stretch_photo: args.stretch_photo })
+    Ok(SessionOverrides {
+        width: args.width,
+        height: args.height,
+        method,
+        set,
+        stretch_photo: args.stretch_photo,
+        allow_read: args.allow_read.clone(),
+    })
 }
 
 /// Loads a session from disk, printing its warnings.

@@ -50,6 +50,13 @@ pub fn render_reference(session: &Session, log: Log) -> Result<(ReferenceImage, 
     let started = Instant::now();
     let image = mrshade_reference::render(session, &|done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
+    // Never a silent black image: NaN is written as black.
+    if let Some((count, (x, y))) = image.composite.non_finite() {
+        anyhow::bail!(
+            "the path-traced composite holds {count} NaN or infinite pixel(s), the first at ({x}, {y}) (a bug in \
+             mrshade, please report it with the session)"
+        );
+    }
     Ok((image, started.elapsed().as_secs_f64()))
 }
 

@@ -1,24 +1,37 @@
-//! Photos and light probes into linear [`HdrImage`]s.
+//! Photos, light probes and textures into linear [`HdrImage`]s (or RGBA8 texels).
 //!
 //! Photos: PNG/JPEG are sRGB-encoded (decoded exactly through the 8-bit table, so that an
 //! untouched pixel re-encodes to its own code); EXR and Radiance HDR are linear.
 //! Probes: EXR or HDR only, equirectangular (2:1), every value finite and ≥ 0.
+//!
+//! Every image is sized from its header and checked against `limits.image_pixels` before it
+//! is decoded (a 62 kB 1-bit PNG can claim 26000 × 19500 pixels), and the decoder runs under
+//! a matching allocation limit. OpenEXR files are checked further by [`exr_guard`].
 
+mod exr_guard;
+
+use crate::budget::Budget;
 use anyhow::{Context, Result, bail};
-use image::{DynamicImage, ImageFormat};
+use image::{DynamicImage, ImageFormat, ImageReader};
 use mrshade_core::HdrImage;
 use mrshade_core::color::{srgb_to_linear, srgb_u8_decode_table};
+use std::io::Cursor;
+
+/// Largest radiometric value accepted anywhere (probe texels × intensity, light
+/// intensities, emission): about 10¹⁸. Larger finite values overflow single precision in the
+/// renderers' sums of squares and turn pixels black; no real camera or lamp comes near.
+pub const MAX_RADIANCE: f32 = 1e18;
 
 /// Decodes a camera photo (PNG, JPEG, EXR or Radiance HDR) to linear RGB.
-pub fn decode_photo(bytes: &[u8]) -> Result<HdrImage> {
+pub fn decode_photo(bytes: &[u8], budget: &Budget) -> Result<HdrImage> {
     let format = guess(bytes)?;
-    let img = image::load_from_memory_with_format(bytes, format).context("cannot decode the image")?;
-    check_size(&img)?;
+    let img = decode(bytes, format, budget).context("cannot decode the image")?;
     let mut out = match format {
         ImageFormat::Png | ImageFormat::Jpeg => srgb_to_hdr(img),
         _ => linear_to_hdr(img),
     };
     check_finite(&out)?;
+    check_magnitude(&out, "pixel value")?;
     // Camera values cannot be negative; EXR photos from resampling may hold tiny ones.
     for p in &mut out.pixels {
         *p = p.map(|v| v.max(0.0));
@@ -31,13 +44,12 @@ pub fn decode_photo(bytes: &[u8]) -> Result<HdrImage> {
 /// NaN and infinities are errors. Small negative values are common in real probes (ringing
 /// of the resampling filter that made them); they are clamped to 0, with a warning when they
 /// held more than 0.1 % of the probe's energy.
-pub fn decode_probe(bytes: &[u8]) -> Result<(HdrImage, Option<String>)> {
+pub fn decode_probe(bytes: &[u8], budget: &Budget) -> Result<(HdrImage, Option<String>)> {
     let format = guess(bytes)?;
     if !matches!(format, ImageFormat::OpenExr | ImageFormat::Hdr) {
         bail!("a light probe must be an HDR image (OpenEXR or Radiance .hdr), not {format:?}");
     }
-    let img = image::load_from_memory_with_format(bytes, format).context("cannot decode the probe")?;
-    check_size(&img)?;
+    let img = decode(bytes, format, budget).context("cannot decode the probe")?;
     let mut out = linear_to_hdr(img);
     if out.width != 2 * out.height {
         bail!("an equirectangular probe is twice as wide as high; this one is {}×{}", out.width, out.height);
@@ -52,10 +64,15 @@ pub fn decode_probe(bytes: &[u8]) -> Result<(HdrImage, Option<String>)> {
     }
     // Tiny negative lobes are normal in resampled probes; say so only when clamping them
     // changes the probe's energy noticeably (more than 0.1 %).
+    if positive_sum <= 0.0 {
+        bail!("the probe holds no light: no value is above 0");
+    }
+    check_magnitude(&out, "probe value")?;
+    // As a share of all the energy, negative included, it cannot pass 100 %.
     let warning = (negative_sum > 1e-3 * positive_sum).then(|| {
         format!(
             "{negative_pixels} probe value(s) were negative ({:.2} % of the probe's energy); clamped to 0",
-            100.0 * negative_sum / positive_sum.max(1e-30)
+            100.0 * negative_sum / (positive_sum + negative_sum)
         )
     });
     Ok((out, warning))
@@ -72,20 +89,63 @@ fn guess(bytes: &[u8]) -> Result<ImageFormat> {
     Ok(format)
 }
 
-fn check_size(img: &DynamicImage) -> Result<()> {
-    if img.width() == 0 || img.height() == 0 {
-        bail!("the image is empty ({}×{})", img.width(), img.height());
+/// Decodes `bytes` after checking its size from the header against the budget, with the
+/// decoder's own allocations limited to what that size needs.
+fn decode(bytes: &[u8], format: ImageFormat, budget: &Budget) -> Result<DynamicImage> {
+    let reader = || ImageReader::with_format(Cursor::new(bytes), format);
+    let (width, height) = match format {
+        ImageFormat::OpenExr => exr_guard::largest_layer(bytes)?,
+        _ => reader().into_dimensions().context("cannot read the image header")?,
+    };
+    if width == 0 || height == 0 {
+        bail!("the image is empty ({width}×{height})");
+    }
+    budget.check_image(width, height)?;
+    if format == ImageFormat::OpenExr {
+        exr_guard::check_dwa_chunks(bytes)?;
+    }
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(width);
+    limits.max_image_height = Some(height);
+    // RGBA, 32-bit float at most, plus the decoder's working rows.
+    limits.max_alloc = Some(width as u64 * height as u64 * 16 + (64 << 20));
+    let mut reader = reader();
+    reader.limits(limits);
+    let img = reader.decode()?;
+    if (img.width(), img.height()) != (width, height) {
+        bail!("the image decodes to {}×{} but its header says {width}×{height}", img.width(), img.height());
+    }
+    Ok(img)
+}
+
+/// A texture for the GPU and the path tracer: 8-bit RGBA (PNG or JPEG, as glTF allows).
+pub fn decode_rgba8(bytes: &[u8], budget: &mut Budget) -> Result<image::RgbaImage> {
+    let format = guess(bytes)?;
+    let img = decode(bytes, format, budget)?;
+    budget.charge("the decoded texture", img.width() as u64 * img.height() as u64, 4)?;
+    Ok(img.to_rgba8())
+}
+
+/// An 8-bit sRGB image as stored (for scoring with `compare`; alpha dropped).
+pub fn decode_rgb8(bytes: &[u8], budget: &Budget) -> Result<image::RgbImage> {
+    let format = guess(bytes)?;
+    Ok(decode(bytes, format, budget)?.to_rgb8())
+}
+
+/// Rejects finite values so large that the renderers' arithmetic overflows.
+fn check_magnitude(img: &HdrImage, what: &str) -> Result<()> {
+    if let Some(i) = img.pixels.iter().position(|p| p.iter().any(|v| v.abs() > MAX_RADIANCE)) {
+        let (x, y) = (i as u32 % img.width, i as u32 / img.width);
+        bail!("a {what} at ({x}, {y}) is larger than {MAX_RADIANCE:e}, beyond what mrshade computes with");
     }
     Ok(())
 }
 
-/// Rejects NaN and infinities, naming the first offending pixel.
+/// Rejects NaN and infinities, naming the first offending pixel (not its value: the value is
+/// bytes of the file).
 fn check_finite(img: &HdrImage) -> Result<()> {
-    let bad = |p: &[f32; 3]| p.iter().any(|v| !v.is_finite());
-    if let Some(i) = img.pixels.iter().position(bad) {
-        let count = img.pixels.iter().filter(|p| bad(p)).count();
-        let (x, y) = (i as u32 % img.width, i as u32 / img.width);
-        bail!("{count} pixel(s) hold NaN or infinite values, the first at ({x}, {y}): {:?}", img.pixels[i]);
+    if let Some((count, (x, y))) = img.non_finite() {
+        bail!("{count} pixel(s) hold NaN or infinite values, the first at ({x}, {y})");
     }
     Ok(())
 }

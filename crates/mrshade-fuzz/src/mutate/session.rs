@@ -1,0 +1,100 @@
+//! Session (TOML) mutations: every setting at its boundaries, products of valid settings,
+//! paths that lead outside or to devices, sizes, and raw text damage.
+
+use super::{bytes, values};
+use arbitrary::Unstructured;
+use std::collections::BTreeMap;
+
+/// What a setting holds, so that most mutations get past the type check to the range check.
+#[derive(Clone, Copy)]
+enum Kind {
+    Number,
+    Path,
+    Choice(&'static [&'static str]),
+}
+
+/// Settings a session may hold.
+const KEYS: &[(&str, Kind)] = &[
+    ("exposure", Kind::Number),
+    ("camera", Kind::Choice(&["camera", "desk", "", "nope"])),
+    ("method", Kind::Choice(&["dir", "direct"])),
+    ("scene", Kind::Path),
+    ("background", Kind::Path),
+    ("environment.image", Kind::Path),
+    ("environment.intensity", Kind::Number),
+    ("environment.rotation_deg", Kind::Number),
+    ("output.width", Kind::Number),
+    ("output.height", Kind::Number),
+    ("output.supersample", Kind::Number),
+    ("output.frames", Kind::Number),
+    ("composite.mode", Kind::Choice(&["alpha", "additive"])),
+    ("composite.alpha_epsilon", Kind::Number),
+    ("composite.alpha_max", Kind::Number),
+    ("shadows.resolution", Kind::Number),
+    ("shadows.pcf_radius", Kind::Number),
+    ("shadows.normal_offset", Kind::Number),
+    ("dir.vpl_count", Kind::Number),
+    ("dir.points_per_vpl", Kind::Number),
+    ("dir.ism_resolution", Kind::Number),
+    ("dir.rsm_resolution", Kind::Number),
+    ("dir.interleave", Kind::Number),
+    ("dir.near_field_samples", Kind::Number),
+    ("dir.clamp_distance", Kind::Number),
+    ("dir.distribution", Kind::Choice(&["equal", "weighted", "flux"])),
+    ("dir.temporal.base_confidence", Kind::Number),
+    ("reference.spp", Kind::Number),
+    ("reference.max_bounces", Kind::Number),
+    // Lowering a budget is fair; raising one is the user's informed choice, not an attack.
+    ("limits.lights", Kind::Number),
+    ("limits.gpu_mib", Kind::Number),
+    ("limits.allow_read", Kind::Path),
+    ("unknown.key", Kind::Number),
+];
+
+/// Mutates `session.toml`.
+pub fn mutate(files: &mut BTreeMap<String, Vec<u8>>, u: &mut Unstructured) -> String {
+    let Some(text) = files.get("session.toml").map(|b| String::from_utf8_lossy(b).into_owned()) else {
+        return "no session".into();
+    };
+    if u.ratio(1, 10).unwrap_or(false) {
+        let mut raw = text.into_bytes();
+        let step = bytes::mutate(&mut raw, u);
+        files.insert("session.toml".into(), raw);
+        return format!("session.toml bytes: {step}");
+    }
+    let Ok(mut table) = toml::from_str::<toml::Table>(&text) else { return "session.toml not TOML".into() };
+    let mut steps = Vec::new();
+    for _ in 0..u.int_in_range(1..=3u8).unwrap_or(1) {
+        let (key, kind) = KEYS[u.choose_index(KEYS.len()).unwrap_or(0)];
+        // One time in ten, the wrong type.
+        let kind = if u.ratio(1, 10).unwrap_or(false) { Kind::Choice(&["", "true"]) } else { kind };
+        let value = match kind {
+            Kind::Number => {
+                let n = values::number(u, None);
+                if n.fract() == 0.0 && n.abs() < 9.2e18 {
+                    toml::Value::Integer(n as i64)
+                } else {
+                    toml::Value::Float(n)
+                }
+            }
+            Kind::Path => toml::Value::String(values::string(u).into()),
+            Kind::Choice(options) => toml::Value::String(options[u.choose_index(options.len()).unwrap_or(0)].into()),
+        };
+        let value = if key == "limits.allow_read" { toml::Value::Array(vec![value]) } else { value };
+        steps.push(format!("{key} = {value}"));
+        set(&mut table, key, value);
+    }
+    files.insert("session.toml".into(), toml::to_string(&table).unwrap_or_default().into_bytes());
+    format!("session.toml: {}", steps.join("; "))
+}
+
+fn set(table: &mut toml::Table, dotted: &str, value: toml::Value) {
+    let parts: Vec<&str> = dotted.split('.').collect();
+    let mut node = table;
+    for part in &parts[..parts.len() - 1] {
+        let entry = node.entry(part.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        let Some(next) = entry.as_table_mut() else { return };
+        node = next;
+    }
+    node.insert(parts[parts.len() - 1].to_string(), value);
+}
