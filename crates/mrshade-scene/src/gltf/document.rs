@@ -181,8 +181,29 @@ fn walk(value: &Value, path: &mut String, holds: Holds) -> Result<()> {
     Ok(())
 }
 
-/// References that the `gltf` crate dereferences before (or without) checking them.
+/// What the `gltf` crate dereferences or unwraps before (or without) checking it: references
+/// in mesh attributes and morph targets, animation targets, an image's source, a camera's
+/// projection of its declared type.
 fn check_unchecked_references(root: &gltf::json::Root) -> Result<()> {
+    for (i, image) in root.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (Some(_), None, _) | (None, Some(_), Some(_)) => {}
+            (None, Some(_), None) => bail!("invalid glTF: images[{i}] has a bufferView but no mimeType"),
+            _ => bail!("invalid glTF: images[{i}] must have either a uri or a bufferView"),
+        }
+    }
+    for (i, camera) in root.cameras.iter().enumerate() {
+        use gltf::json::camera::Type;
+        use gltf::json::validation::Checked;
+        let present = match camera.type_ {
+            Checked::Valid(Type::Perspective) => camera.perspective.is_some(),
+            Checked::Valid(Type::Orthographic) => camera.orthographic.is_some(),
+            Checked::Invalid => true, // the structural validation names it
+        };
+        if !present {
+            bail!("invalid glTF: cameras[{i}] lacks the projection object of its type");
+        }
+    }
     let accessors = root.accessors.len();
     for (m, mesh) in root.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
@@ -359,5 +380,10 @@ mod tests {
         assert!(msg.contains("accessor 99") && msg.contains("0 accessors"), "{msg}");
         let anim = r#"{"asset":{"version":"2.0"},"animations":[{"channels":[{"sampler":0,"target":{"node":7,"path":"rotation"}}],"samplers":[]}]}"#;
         assert!(format!("{:#}", parse(anim.as_bytes()).err().unwrap()).contains("target.node is 7"));
+        // Found by the fuzzer: an image with neither source unwrapped None inside the crate.
+        let image = r#"{"asset":{"version":"2.0"},"images":[{}]}"#;
+        assert!(format!("{:#}", parse(image.as_bytes()).err().unwrap()).contains("images[0] must have either"));
+        let camera = r#"{"asset":{"version":"2.0"},"cameras":[{"type":"perspective","orthographic":{"xmag":1,"ymag":1,"zfar":2,"znear":1}}]}"#;
+        assert!(format!("{:#}", parse(camera.as_bytes()).err().unwrap()).contains("cameras[0] lacks"));
     }
 }
