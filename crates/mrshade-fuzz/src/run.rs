@@ -37,15 +37,8 @@ static PANIC_MESSAGE: Mutex<String> = Mutex::new(String::new());
 /// Records panic messages instead of printing them; call once per process.
 pub fn capture_panics() {
     std::panic::set_hook(Box::new(|info| {
-        let text = info
-            .payload()
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| info.payload().downcast_ref::<String>().cloned())
-            .unwrap_or_default();
-        let at = info.location().map(|l| format!(" at {}:{}", l.file(), l.line())).unwrap_or_default();
         if let Ok(mut m) = PANIC_MESSAGE.lock() {
-            *m = format!("{text}{at}");
+            *m = mrshade_core::text::panic_message(info);
         }
     }));
 }

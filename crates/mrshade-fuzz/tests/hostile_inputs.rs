@@ -29,15 +29,8 @@ const SEED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/benchmark/
 fn case(gltf: impl FnOnce(&mut Value), session: impl FnOnce(&mut String)) -> tempfile::TempDir {
     cap_memory();
     let dir = tempfile::tempdir().unwrap();
-    for f in ["background.png", "environment.exr"] {
-        std::fs::copy(Path::new(SEED).join(f), dir.path().join(f)).unwrap();
-    }
-    let (json, bin) = mrshade_testkit::gltf::unpack_glb(&std::fs::read(Path::new(SEED).join("scene.glb")).unwrap());
-    let mut doc: Value = serde_json::from_slice(&json).unwrap();
-    gltf(&mut doc);
-    let glb = mrshade_testkit::gltf::pack_glb(&serde_json::to_vec(&doc).unwrap(), &bin);
-    std::fs::write(dir.path().join("scene.glb"), glb).unwrap();
-    let mut text = std::fs::read_to_string(Path::new(SEED).join("session.toml")).unwrap();
+    mrshade_testkit::gltf::copy_session_with(Path::new(SEED), dir.path(), gltf);
+    let mut text = std::fs::read_to_string(dir.path().join("session.toml")).unwrap();
     session(&mut text);
     std::fs::write(dir.path().join("session.toml"), text).unwrap();
     dir

@@ -326,6 +326,22 @@ pub fn pack_glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
     out
 }
 
+/// Copies the session folder `from` (its `session.toml`, `scene.glb`, photo and probe) into
+/// `to`, with the glTF document changed by `edit`: how hostile-input tests make one input of a
+/// committed session.
+pub fn copy_session_with(from: &Path, to: &Path, edit: impl FnOnce(&mut Value)) {
+    for entry in std::fs::read_dir(from).expect("read the session folder") {
+        let path = entry.expect("entry").path();
+        if path.is_file() && path.file_name() != Some("scene.glb".as_ref()) {
+            std::fs::copy(&path, to.join(path.file_name().expect("a file"))).expect("copy");
+        }
+    }
+    let (json, bin) = unpack_glb(&std::fs::read(from.join("scene.glb")).expect("read scene.glb"));
+    let mut doc: Value = serde_json::from_slice(&json).expect("JSON");
+    edit(&mut doc);
+    std::fs::write(to.join("scene.glb"), pack_glb(&serde_json::to_vec(&doc).expect("JSON"), &bin)).expect("write");
+}
+
 /// The JSON and BIN chunks of a `.glb`, read leniently (for tests that take a file apart and
 /// change it; the loader's own reading is strict).
 pub fn unpack_glb(glb: &[u8]) -> (Vec<u8>, Vec<u8>) {

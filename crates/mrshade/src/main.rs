@@ -12,14 +12,8 @@ use clap::Parser;
 fn main() {
     // A panic is a bug in mrshade; still, it is reported as one line, like any error.
     std::panic::set_hook(Box::new(|info| {
-        let message = info
-            .payload()
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| info.payload().downcast_ref::<String>().cloned())
-            .unwrap_or_default();
-        let at = info.location().map(|l| format!(" at {}:{}", l.file(), l.line())).unwrap_or_default();
-        eprintln!("error: internal error (a bug in mrshade, please report it): {}{at}", one_line(&message));
+        let message = mrshade_core::text::panic_message(info);
+        eprintln!("error: internal error (a bug in mrshade, please report it): {}", one_line(&message));
     }));
     let cli = args::Cli::parse();
     if let Err(e) = cmd::run(cli) {

@@ -36,14 +36,7 @@ const SEED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/benchmark/
 /// The seed session in a temporary folder with its glTF changed by `f`.
 fn session_with(f: impl FnOnce(&mut Value)) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
-    for name in ["session.toml", "background.png", "environment.exr"] {
-        std::fs::copy(Path::new(SEED).join(name), dir.path().join(name)).unwrap();
-    }
-    let (json, bin) = mrshade_testkit::gltf::unpack_glb(&std::fs::read(Path::new(SEED).join("scene.glb")).unwrap());
-    let mut doc: Value = serde_json::from_slice(&json).unwrap();
-    f(&mut doc);
-    let glb = mrshade_testkit::gltf::pack_glb(&serde_json::to_vec(&doc).unwrap(), &bin);
-    std::fs::write(dir.path().join("scene.glb"), glb).unwrap();
+    mrshade_testkit::gltf::copy_session_with(Path::new(SEED), dir.path(), f);
     dir
 }
 
