@@ -40,6 +40,24 @@ pub fn equirect_texel_solid_angle(y: u32, width: u32, height: u32) -> f32 {
     (TAU / width as f32) * (theta0.cos() - theta1.cos())
 }
 
+/// The box around `points` (a point at the origin if there are none).
+pub fn bounding_box(points: &[Vec3]) -> (Vec3, Vec3) {
+    let lo = points.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
+    let hi = points.iter().fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
+    if lo.x > hi.x { (Vec3::ZERO, Vec3::ZERO) } else { (lo, hi) }
+}
+
+/// The eight corners of the box `(lo, hi)`.
+pub fn box_corners((lo, hi): (Vec3, Vec3)) -> [Vec3; 8] {
+    std::array::from_fn(|k| {
+        Vec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
 /// The matrix that carries object-space normals to world space under `world_from_object`:
 /// the cofactor matrix of its linear part (det · M⁻ᵀ: the directions of the inverse
 /// transpose, which normals are normalised after anyway), signed like the determinant and

@@ -135,7 +135,7 @@ pub fn fuzz(config: &Config, mut progress: impl FnMut(&Summary)) -> std::io::Res
                 std::fs::write(case_dir.join("failure.txt"), format!("{what}\n"))?;
             }
             summary.failures.push((number, what));
-            if worker.child.try_wait()?.is_some() || !worker_alive(&mut worker) {
+            if !worker_alive(&mut worker) {
                 worker = Worker::start(config, &stderr)?;
             }
         }

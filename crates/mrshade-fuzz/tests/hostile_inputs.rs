@@ -10,6 +10,7 @@ use base64::Engine;
 use base64::engine::general_purpose::STANDARD as BASE64;
 use cap::Cap;
 use mrshade_scene::{Session, SessionOverrides};
+use mrshade_testkit::gltf::push_root;
 use serde_json::{Value, json};
 use std::path::Path;
 use std::sync::Once;
@@ -97,9 +98,8 @@ fn attributes_naming_missing_accessors() {
 fn nested_scales_overflow_the_world() {
     let dir = gltf_case(|d| {
         let n = d["nodes"].as_array().unwrap().len();
-        d["nodes"].as_array_mut().unwrap().push(json!({"name": "a", "scale": [1e30, 1e30, 1e30], "children": [n + 1]}));
-        d["nodes"].as_array_mut().unwrap().push(json!({"name": "b", "scale": [1e30, 1e30, 1e30], "mesh": 4}));
-        d["scenes"][0]["nodes"].as_array_mut().unwrap().push(json!(n));
+        push_root(d, json!({"name": "a", "scale": [1e30, 1e30, 1e30], "children": [n + 1]}));
+        push(d, "nodes", json!({"name": "b", "scale": [1e30, 1e30, 1e30], "mesh": 4}));
     });
     refused(&dir, &["node 'b'", "infinite"]);
     let far = gltf_case(|d| node(d, CUBE).insert("scale".into(), json!([1e10, 1e10, 1e10])).map(drop).unwrap());
@@ -173,11 +173,11 @@ fn node_graphs_that_explode() {
     // 50 nodes, each the parent of the next two: 2^25 paths from the root.
     let dag = gltf_case(|d| {
         let first = d["nodes"].as_array().unwrap().len();
-        for i in 0..50 {
+        push_root(d, json!({"children": [first + 1, first + 2], "mesh": 4}));
+        for i in 1..50 {
             let children: Vec<usize> = [first + i + 1, first + i + 2].into_iter().filter(|&c| c < first + 50).collect();
-            d["nodes"].as_array_mut().unwrap().push(json!({"children": children, "mesh": 4}));
+            push(d, "nodes", json!({"children": children, "mesh": 4}));
         }
-        d["scenes"][0]["nodes"].as_array_mut().unwrap().push(json!(first));
     });
     refused(&dag, &["forest"]);
     refused(&gltf_case(|d| drop(node(d, 0).insert("children".into(), json!([0])))), &["itself"]);
@@ -190,8 +190,7 @@ fn coincident_copies_do_not_stall_the_path_tracer() {
     // about a minute for these 40,000).
     let dir = gltf_case(|d| {
         for i in 0..20_000 {
-            let n = push(d, "nodes", json!({"name": format!("copy{i}"), "mesh": 0, "translation": [0, 0.001, 0]}));
-            d["scenes"][0]["nodes"].as_array_mut().unwrap().push(json!(n));
+            push_root(d, json!({"name": format!("copy{i}"), "mesh": 0, "translation": [0, 0.001, 0]}));
         }
     });
     let started = std::time::Instant::now();
@@ -239,10 +238,9 @@ fn settings_valid_alone_but_not_together() {
     refused(&dir, &["dir.points_per_vpl", "dir.vpl_count", "268435456"]);
     let many_lights = gltf_case(|d| {
         for i in 0..10_000 {
-            let n = d["nodes"].as_array().unwrap().len();
-            d["nodes"].as_array_mut().unwrap().push(json!({"name": format!("l{i}"), "translation": [0, 1, 0],
-                "extensions": {"KHR_lights_punctual": {"light": 0}}}));
-            d["scenes"][0]["nodes"].as_array_mut().unwrap().push(json!(n));
+            let lamp = json!({"name": format!("l{i}"), "translation": [0, 1, 0],
+                "extensions": {"KHR_lights_punctual": {"light": 0}}});
+            push_root(d, lamp);
         }
     });
     refused(&many_lights, &["10001 lights", "limits.lights"]);

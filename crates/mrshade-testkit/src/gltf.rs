@@ -342,6 +342,15 @@ pub fn copy_session_with(from: &Path, to: &Path, edit: impl FnOnce(&mut Value)) 
     std::fs::write(to.join("scene.glb"), pack_glb(&serde_json::to_vec(&doc).expect("JSON"), &bin)).expect("write");
 }
 
+/// Appends `node` to the document's nodes and lists it as a root of scene 0; returns its index.
+pub fn push_root(doc: &mut Value, node: Value) -> usize {
+    let nodes = doc["nodes"].as_array_mut().expect("nodes");
+    nodes.push(node);
+    let index = nodes.len() - 1;
+    doc["scenes"][0]["nodes"].as_array_mut().expect("scene 0").push(index.into());
+    index
+}
+
 /// The JSON and BIN chunks of a `.glb`, read leniently (for tests that take a file apart and
 /// change it; the loader's own reading is strict).
 pub fn unpack_glb(glb: &[u8]) -> (Vec<u8>, Vec<u8>) {

@@ -2,6 +2,7 @@
 //! a non-zero exit, no panic, no terminal injection, memory bounded by the operating system's
 //! own limit (`prlimit`), and no hang on a FIFO.
 
+use mrshade_testkit::gltf::push_root;
 use serde_json::{Value, json};
 use std::path::Path;
 use std::process::{Command, Output};
@@ -139,10 +140,9 @@ fn compare_refuses_images_too_large_to_score() {
 fn too_many_lights_for_the_device_is_an_error_not_a_bug_report() {
     let dir = session_with(|d| {
         for i in 0..10_000 {
-            let n = d["nodes"].as_array().unwrap().len();
-            d["nodes"].as_array_mut().unwrap().push(json!({"name": format!("l{i}"), "translation": [0, 1, 0],
-                "extensions": {"KHR_lights_punctual": {"light": 0}}}));
-            d["scenes"][0]["nodes"].as_array_mut().unwrap().push(json!(n));
+            let lamp = json!({"name": format!("l{i}"), "translation": [0, 1, 0],
+                "extensions": {"KHR_lights_punctual": {"light": 0}}});
+            push_root(d, lamp);
         }
     });
     let out = dir.path().join("out.png").display().to_string();

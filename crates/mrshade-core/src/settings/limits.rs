@@ -61,21 +61,11 @@ impl Limits {
             "limits.image_pixels",
             format!("must be between 1 and 2^32, got {}", self.image_pixels),
         )?;
-        check(
-            (1..=1 << 20).contains(&self.file_mib),
-            "limits.file_mib",
-            format!("must be between 1 and 1048576 (1 TiB), got {}", self.file_mib),
-        )?;
-        check(
-            (1..=1 << 20).contains(&self.scene_mib),
-            "limits.scene_mib",
-            format!("must be between 1 and 1048576 (1 TiB), got {}", self.scene_mib),
-        )?;
-        check(
-            (1..=1 << 20).contains(&self.gpu_mib),
-            "limits.gpu_mib",
-            format!("must be between 1 and 1048576 (1 TiB), got {}", self.gpu_mib),
-        )?;
+        for (name, mib) in
+            [("limits.file_mib", self.file_mib), ("limits.scene_mib", self.scene_mib), ("limits.gpu_mib", self.gpu_mib)]
+        {
+            check((1..=1 << 20).contains(&mib), name, format!("must be between 1 and 1048576 (1 TiB), got {mib}"))?;
+        }
         check(self.lights <= 65536, "limits.lights", format!("must be at most 65536, got {}", self.lights))
     }
 

@@ -4,6 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
 use mrshade_core::flags::{Realness, SURFACE_REAL};
+use mrshade_core::math::{bounding_box, box_corners};
 use mrshade_scene::Scene;
 use wgpu::util::DeviceExt;
 
@@ -190,22 +191,10 @@ impl Geometry {
     }
 }
 
-/// The box around `points` (a point at the origin if there are none).
-fn bounding_box(points: &[Vec3]) -> (Vec3, Vec3) {
-    let lo = points.iter().fold(Vec3::splat(f32::INFINITY), |a, &p| a.min(p));
-    let hi = points.iter().fold(Vec3::splat(f32::NEG_INFINITY), |a, &p| a.max(p));
-    if lo.x > hi.x { (Vec3::ZERO, Vec3::ZERO) } else { (lo, hi) }
-}
-
 /// The world box around object box `(lo, hi)` moved by `m`.
-fn world_box((lo, hi): (Vec3, Vec3), m: &Mat4) -> (Vec3, Vec3) {
-    (0..8).fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), k| {
-        let corner = Vec3::new(
-            if k & 1 == 0 { lo.x } else { hi.x },
-            if k & 2 == 0 { lo.y } else { hi.y },
-            if k & 4 == 0 { lo.z } else { hi.z },
-        );
-        let p = m.transform_point3(corner);
+fn world_box(object_box: (Vec3, Vec3), m: &Mat4) -> (Vec3, Vec3) {
+    box_corners(object_box).iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), &c| {
+        let p = m.transform_point3(c);
         (a.min(p), b.max(p))
     })
 }

@@ -147,7 +147,7 @@ fn check_bounds(accessor: &gltf::Accessor, positions: &[Vec3]) -> Result<()> {
     let (Some(min), Some(max)) = (as_vec3(accessor.min()), as_vec3(accessor.max())) else {
         return Ok(());
     };
-    let (lo, hi) = positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let (lo, hi) = mrshade_core::math::bounding_box(positions);
     // Exporters round the bounds they write; allow for that.
     let slack = 1e-4 * (max - min).abs().max_element().max(lo.abs().max(hi.abs()).max_element()).max(1e-3);
     if (min - lo).max_element() > slack || (hi - max).max_element() > slack {

@@ -15,6 +15,7 @@ use anyhow::{Context, Result, bail};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use mrshade_core::flags::Realness;
+use mrshade_core::math::{bounding_box, box_corners};
 
 /// The node graph is a forest (checked by `document`); depth is still bounded, for the stack.
 const MAX_DEPTH: usize = 256;
@@ -180,11 +181,8 @@ fn is_invertible(m: Mat4) -> bool {
 
 /// The primitive's world-space box must be finite and within [`MAX_WORLD_EXTENT`].
 fn check_extent(primitive: &Primitive, world_from_object: Mat4) -> Result<()> {
-    let (lo, hi) =
-        primitive.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-    for corner in 0..8 {
-        let pick = |bit: u32, l: f32, h: f32| if corner & bit == 0 { l } else { h };
-        let c = Vec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+    // Corner by corner: a NaN corner would vanish in a min/max fold.
+    for c in box_corners(bounding_box(&primitive.positions)) {
         let w = world_from_object.transform_point3(c);
         if !(w.is_finite() && w.abs().max_element() <= MAX_WORLD_EXTENT) {
             bail!(

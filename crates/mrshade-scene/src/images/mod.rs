@@ -92,14 +92,7 @@ fn guess(bytes: &[u8]) -> Result<ImageFormat> {
 /// Decodes `bytes` after checking its size from the header against the budget, with the
 /// decoder's own allocations limited to what that size needs.
 fn decode(bytes: &[u8], format: ImageFormat, budget: &Budget) -> Result<DynamicImage> {
-    let reader = || ImageReader::with_format(Cursor::new(bytes), format);
-    let (width, height) = match format {
-        ImageFormat::OpenExr => exr_guard::largest_layer(bytes)?,
-        _ => reader().into_dimensions().context("cannot read the image header")?,
-    };
-    if width == 0 || height == 0 {
-        bail!("the image is empty ({width}×{height})");
-    }
+    let (width, height) = dimensions(bytes, format)?;
     budget.check_image(width, height)?;
     if format == ImageFormat::OpenExr {
         exr_guard::check_dwa_chunks(bytes)?;
@@ -109,7 +102,7 @@ fn decode(bytes: &[u8], format: ImageFormat, budget: &Budget) -> Result<DynamicI
     limits.max_image_height = Some(height);
     // RGBA, 32-bit float at most, plus the decoder's working rows.
     limits.max_alloc = Some(width as u64 * height as u64 * 16 + (64 << 20));
-    let mut reader = reader();
+    let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
     reader.limits(limits);
     let img = reader.decode()?;
     if (img.width(), img.height()) != (width, height) {
@@ -118,12 +111,28 @@ fn decode(bytes: &[u8], format: ImageFormat, budget: &Budget) -> Result<DynamicI
     Ok(img)
 }
 
-/// A texture for the GPU and the path tracer: 8-bit RGBA (PNG or JPEG, as glTF allows).
+/// `width × height` from the image's header alone (non-zero).
+fn dimensions(bytes: &[u8], format: ImageFormat) -> Result<(u32, u32)> {
+    let (width, height) = match format {
+        ImageFormat::OpenExr => exr_guard::largest_layer(bytes)?,
+        _ => ImageReader::with_format(Cursor::new(bytes), format)
+            .into_dimensions()
+            .context("cannot read the image header")?,
+    };
+    if width == 0 || height == 0 {
+        bail!("the image is empty ({width}×{height})");
+    }
+    Ok((width, height))
+}
+
+/// A texture for the GPU and the path tracer: 8-bit RGBA (PNG or JPEG, as glTF allows), its
+/// texels charged to the scene's budget before it is decoded.
 pub fn decode_rgba8(bytes: &[u8], budget: &mut Budget) -> Result<image::RgbaImage> {
     let format = guess(bytes)?;
-    let img = decode(bytes, format, budget)?;
-    budget.charge("the decoded texture", img.width() as u64 * img.height() as u64, 4)?;
-    Ok(img.to_rgba8())
+    let (width, height) = dimensions(bytes, format)?;
+    budget.check_image(width, height)?;
+    budget.charge("the decoded texture", width as u64 * height as u64, 4)?;
+    Ok(decode(bytes, format, budget)?.to_rgba8())
 }
 
 /// An 8-bit sRGB image as stored (for scoring with `compare`; alpha dropped).
