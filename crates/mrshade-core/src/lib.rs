@@ -6,6 +6,7 @@
 //! defaults.
 
 pub mod brdf;
+pub mod camera;
 pub mod color;
 pub mod differential;
 pub mod flags;

@@ -1,5 +1,5 @@
-//! The seeds: the committed sessions (six small benchmark scenes and the demo), compiled in so
-//! that the harness needs nothing but itself.
+//! The seeds: the committed sessions (six small benchmark scenes, the demo and a tiny posed
+//! image sequence, `corpus/`), compiled in so that the harness needs nothing but itself.
 
 /// One committed session: its file name and every file it reads.
 pub struct Seed {
@@ -39,6 +39,21 @@ pub static SEEDS: &[Seed] = &[
             ("scene.glb", include_bytes!("../../../assets/demo/scene.glb")),
             ("background.jpg", include_bytes!("../../../assets/demo/background.jpg")),
             ("environment.exr", include_bytes!("../../../assets/demo/environment.exr")),
+        ],
+    },
+    // A posed image sequence: three frames of `shared/data/sequences/desk-orbit` at 32×24
+    // (PNG, PNG named without its extension, JPEG) with intrinsics for 320×240, in the scene
+    // and probe of desk-spot-real.
+    Seed {
+        name: "desk-orbit (sequence)",
+        files: &[
+            ("session.toml", include_bytes!("../corpus/desk-orbit/session.toml")),
+            ("transforms.json", include_bytes!("../corpus/desk-orbit/transforms.json")),
+            ("frame_0000.png", include_bytes!("../corpus/desk-orbit/frame_0000.png")),
+            ("frame_0012.png", include_bytes!("../corpus/desk-orbit/frame_0012.png")),
+            ("frame_0023.jpg", include_bytes!("../corpus/desk-orbit/frame_0023.jpg")),
+            ("scene.glb", include_bytes!("../../../assets/benchmark/desk-spot-real/scene.glb")),
+            ("environment.exr", include_bytes!("../../../assets/benchmark/desk-spot-real/environment.exr")),
         ],
     },
 ];

@@ -119,6 +119,14 @@ impl GpuContext {
         out
     }
 
+    /// Blocks until the GPU has finished the submission `index` (and all before it).
+    pub fn wait_for(&self, index: wgpu::SubmissionIndex) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::Wait { submission_index: Some(index), timeout: None })
+            .map(|_| ())
+            .map_err(|e| anyhow::anyhow!("waiting for the GPU failed: {e}"))
+    }
+
     /// Blocks until the GPU has finished all submitted work.
     pub fn wait_idle(&self) -> Result<()> {
         self.device

@@ -1,135 +1,121 @@
-//! THE frame: the passes in order (Knecht §1.4, restricted to what the selected method
-//! computes). Every pass is recorded into one encoder and timed on its own.
+//! THE frame (Knecht §1.4): per-frame inputs in (uploaded first: photo, camera, instance and
+//! light transforms), a composite out. Every pass is recorded into
+//! one encoder and timed on its own; the comments name what each pass reads and what it hands
+//! on (the bindings themselves are made once, when the renderer is built).
 
-use crate::outputs::Composite;
+use crate::methods::FrameChange;
+use crate::passes::upload::PackedPhoto;
 use crate::renderer::Renderer;
 use anyhow::Result;
-use mrshade_core::settings::Method;
+use glam::{Mat4, Vec2};
+use mrshade_core::camera::CameraView;
 use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::Recorder;
 use wgpu_profiler::GpuProfiler;
 
-impl Renderer {
-    /// Records one frame.
-    pub fn record_frame(&mut self, rec: &mut Recorder) {
-        // 1. Shadow maps: real-only and virtual-only casters per light.
-        self.shadows.record(rec, &self.rasterizer);
-        // 2. G-buffer of real and virtual surfaces: visibility, then attributes.
-        self.gbuffer_pass.record(rec, &self.rasterizer);
-        // 3. Light transport into L_rv and L_r from the same evaluation.
-        // Indirect light first (RSMs → VPLs → ISMs → interleaved shading → temporal smoothing
-        // and merge), then direct light on top of it (Knecht §1.4, steps 5–9).
-        if let (Method::Dir, Some(dir)) = (&self.settings.method, &mut self.dir) {
-            dir.record(rec, &self.rasterizer);
-        }
-        self.direct.record(rec);
-        // 4. Differential composite with the photo.
-        self.composite.record(rec);
-    }
+/// What changes from frame to frame: the camera, the photo, where things are.
+#[derive(Clone, Copy)]
+pub struct FrameInputs<'a> {
+    /// This frame's camera pose and intrinsics.
+    pub camera: CameraView,
+    /// Sub-pixel offset of the camera's image, in pixels (still images average jittered frames).
+    pub jitter: Vec2,
+    /// The photo, packed for upload; `None` keeps the last one.
+    pub photo: Option<&'a PackedPhoto>,
+    /// `world_from_object` per scene instance; `None` keeps the last.
+    pub instances: Option<&'a [Mat4]>,
+    /// `world_from_light` per scene light; `None` keeps the last.
+    pub lights: Option<&'a [Mat4]>,
+}
 
-    /// Records and submits one frame; timings (if enabled) go to `profiler`.
-    pub fn render(&mut self, ctx: &GpuContext, profiler: &mut GpuProfiler) -> Result<()> {
-        self.scene.geometry.begin_frame(&ctx.queue);
-        self.uniforms.exposure_env.w = self.frame_index as f32;
-        ctx.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&self.uniforms));
-        // The camera does not move between frames yet: the previous frame's is this one's.
-        self.uniforms.previous_clip_from_world = self.uniforms.clip_from_world;
-        if let Some(dir) = &mut self.dir {
-            dir.prepare(&ctx.queue, &self.scene.geometry);
-        }
-        ctx.checked("rendering a frame", || {
-            let mut rec = Recorder::new(ctx, profiler, "frame");
-            self.record_frame(&mut rec);
-            ctx.queue.submit([rec.finish()]);
-            Ok(())
-        })?;
-        self.frame_index += 1;
-        Ok(())
-    }
-
-    /// Renders one untimed frame and waits for it.
-    pub fn render_once(&mut self, ctx: &GpuContext) -> Result<()> {
-        self.render_frames(ctx, 1, |_| {})
-    }
-
-    /// Renders a still image of `frames` untimed frames, calling `progress(i)` after each:
-    /// the composite averaged over the last half (`frames / 2`, at least one), once a
-    /// temporal method's smoothing and bounces have converged over the first half.
-    pub fn render_still(&mut self, ctx: &GpuContext, frames: u32, mut progress: impl FnMut(u32)) -> Result<Composite> {
-        let averaged = (frames / 2).max(1);
-        self.render_frames(ctx, frames - averaged, &mut progress)?;
-        let mut sum: Option<Composite> = None;
-        for i in 0..averaged {
-            // Sub-pixel jitter (Halton 2, 3): the mean over the frames is an anti-aliased
-            // image, as a path tracer's pixel is; the temporal smoothing follows the jitter
-            // through the motion vectors.
-            let jitter = glam::Vec2::new(halton(2, i + 1), halton(3, i + 1)) - 0.5;
-            self.set_pixel_offset(&ctx.queue, if averaged > 1 { jitter } else { glam::Vec2::ZERO });
-            self.render_frames(ctx, 1, |_| {})?;
-            progress(frames - averaged + i + 1);
-            let c = self.read_composite(ctx)?;
-            match &mut sum {
-                None => sum = Some(c),
-                Some(s) => {
-                    for (a, b) in s.image.pixels.iter_mut().zip(&c.image.pixels) {
-                        for k in 0..3 {
-                            a[k] += b[k];
-                        }
-                    }
-                }
-            }
-        }
-        self.set_pixel_offset(&ctx.queue, glam::Vec2::ZERO);
-        let mut still = sum.expect("at least one frame");
-        let scale = 1.0 / averaged as f32;
-        for p in &mut still.image.pixels {
-            *p = p.map(|c| c * scale);
-        }
-        // Never a silent black image: NaN is written as black.
-        if let Some((count, (x, y))) = still.image.non_finite() {
-            anyhow::bail!(
-                "the composite holds {count} NaN or infinite pixel(s), the first at ({x}, {y}) (a bug in mrshade, \
-                 please report it with the session)"
-            );
-        }
-        Ok(still)
-    }
-
-    /// Shifts the camera's image by `offset` pixels (sub-pixel jitter).
-    fn set_pixel_offset(&mut self, queue: &wgpu::Queue, offset: glam::Vec2) {
-        let (w, h) = self.uniforms.internal_size();
-        let ndc = glam::Vec3::new(2.0 * offset.x / w as f32, -2.0 * offset.y / h as f32, 0.0);
-        let clip_from_world = glam::Mat4::from_translation(ndc) * self.camera_clip_from_world;
-        self.uniforms.clip_from_world = clip_from_world;
-        self.uniforms.world_from_clip = clip_from_world.inverse();
-        // Motion vectors leave the jitter out (as in TAA): the temporal smoothing reuses the
-        // same pixel's history instead of letting it wander by up to a pixel every frame,
-        // which would blur contact shadows. (The camera itself does not move yet.)
-        self.uniforms.previous_clip_from_world = clip_from_world;
-        self.gbuffer_pass.camera.set_clip_from_world(queue, clip_from_world);
-    }
-
-    /// Renders `frames` untimed frames, calling `progress(i)` after each, and waits for the
-    /// last.
-    pub fn render_frames(&mut self, ctx: &GpuContext, frames: u32, mut progress: impl FnMut(u32)) -> Result<()> {
-        let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
-        for i in 0..frames {
-            self.render(ctx, &mut profiler)?;
-            profiler.end_frame().map_err(|e| anyhow::anyhow!("profiler: {e}"))?;
-            ctx.wait_idle()?;
-            progress(i + 1);
-        }
-        Ok(())
+impl<'a> FrameInputs<'a> {
+    /// A frame through `camera` with everything else as it was.
+    pub fn camera(camera: CameraView) -> Self {
+        Self { camera, jitter: Vec2::ZERO, photo: None, instances: None, lights: None }
     }
 }
 
-/// The radical inverse of `i` in base `base` (a Halton sequence).
-fn halton(base: u32, mut i: u32) -> f32 {
-    let (mut f, mut r) = (1.0f32, 0.0f32);
-    while i > 0 {
-        f /= base as f32;
-        r += f * (i % base) as f32;
-        i /= base;
+impl Renderer {
+    /// Records one frame: the passes in order, each reading what the ones before wrote.
+    pub fn record_frame(&mut self, rec: &mut Recorder) {
+        let raster = &self.rasterizer;
+        // 1. geometry, lights ─▶ shadow maps, real-only and virtual-only casters per light.
+        self.shadows.record(rec, raster);
+        // 2. geometry, camera ─▶ G-buffer: visibility, then depth + motion, normals,
+        //    materials, real/virtual flags.
+        self.gbuffer_pass.record(rec, raster);
+        // 3. G-buffer, lights, scene ─▶ the method's indirect light (`IndirectLight`: the
+        //    `Differential { rv, r }` of indirect radiance and the probe's visibility), from
+        //    the same paths for both solutions. `dir`: RSMs → VPLs → ISMs → interleaved
+        //    shading → temporal smoothing and merge (Knecht §1.4, steps 5–9).
+        self.method.record(rec, raster);
+        // 4. G-buffer, shadow maps, probe, indirect light ─▶ `Differential { rv: L_rv, r: L_r }`.
+        self.direct.record(rec);
+        // 5. (The specular stage — reflections, refractions, caustics — attaches here: it reads
+        //    the G-buffer and the method's indirect light and adds to `L_rv`, `L_r`.)
+        // 6. L_rv, L_r, flags, photo ─▶ the composite and α.
+        self.composite.record(rec);
     }
-    r
+
+    /// Uploads `inputs` and tells the method what changed.
+    fn prepare(&mut self, queue: &wgpu::Queue, inputs: &FrameInputs) {
+        if let Some(photo) = inputs.photo {
+            self.photo.write(queue, photo);
+        }
+        if let Some(instances) = inputs.instances {
+            for (i, &m) in instances.iter().enumerate() {
+                self.scene.geometry.set_transform(i, m);
+            }
+        }
+        let lights_moved = inputs.lights.is_some_and(|l| self.scene.set_light_transforms(queue, l));
+        if lights_moved {
+            self.shadows.set_layers(queue, &self.scene.shadow_layers);
+        }
+        self.scene.geometry.begin_frame(queue);
+        let (w, h) = self.internal_size();
+        let unjittered = inputs.camera.clip_from_world(w, h);
+        let camera_moved = self.previous_clip_from_world.is_some_and(|p| p != unjittered);
+        self.uniforms.set_camera(&inputs.camera, inputs.jitter, self.previous_clip_from_world);
+        self.previous_clip_from_world = Some(unjittered);
+        self.gbuffer_pass.camera.set_clip_from_world(queue, self.uniforms.clip_from_world);
+        self.uniforms.exposure_env.w = self.frame_index as f32;
+        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&self.uniforms));
+        let change = FrameChange {
+            geometry: &self.scene.geometry,
+            geometry_moved: self.scene.geometry.moved(),
+            moved_light_layers: lights_moved.then_some(&self.scene.shadow_layers[..]),
+            camera_moved,
+        };
+        self.method.prepare(queue, &change);
+    }
+
+    /// Submits one frame of `inputs` (without waiting for it); timings (if enabled) go to
+    /// `profiler`.
+    pub fn render(
+        &mut self,
+        ctx: &GpuContext,
+        profiler: &mut GpuProfiler,
+        inputs: &FrameInputs,
+    ) -> Result<wgpu::SubmissionIndex> {
+        self.prepare(&ctx.queue, inputs);
+        let submitted = ctx.checked("rendering a frame", || {
+            let mut rec = Recorder::new(ctx, profiler, "frame");
+            self.record_frame(&mut rec);
+            Ok(ctx.queue.submit([rec.finish()]))
+        })?;
+        self.frame_index += 1;
+        Ok(submitted)
+    }
+
+    /// Forgets all temporal history; the next frame is numbered `frame` (its sampling seed).
+    pub fn seek(&mut self, frame: u32) {
+        self.frame_index = frame;
+        self.previous_clip_from_world = None;
+        self.method.seek(frame);
+    }
+
+    /// The session's own camera (its glTF camera, or the first pose of a sequence).
+    pub fn session_camera(&self) -> CameraView {
+        self.session_camera
+    }
 }

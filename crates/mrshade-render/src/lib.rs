@@ -1,13 +1,16 @@
 //! mrshade-render: the real-time differential renderer.
 //!
-//! A frame (`frame.rs`) is one readable function of named passes, each in `passes/<name>/`
-//! with its shaders: shadow maps → G-buffer → differential shading into
-//! `Differential { rv: L_rv, r: L_r }` → composite with the photo. `Renderer` owns the GPU
-//! scene, the passes and their targets for one session.
+//! A frame (`frame.rs`) is one readable function of named passes: shadow maps → G-buffer →
+//! the light-transport method (`methods/<name>/`, behind one seam) → direct light into
+//! `Differential { rv: L_rv, r: L_r }` → composite with the photo. Shared passes live in
+//! `passes/<name>/` with their shaders. `Renderer` owns the GPU scene, the passes and their
+//! targets for one session and renders frames from per-frame inputs ([`FrameInputs`]: camera,
+//! photo, transforms); still images accumulate frames outside the frame (`still.rs`).
 
-pub mod dir;
+pub mod footage;
 pub mod ibl;
 pub mod limits;
+pub mod methods;
 pub mod outputs;
 pub mod passes;
 pub mod raster;
@@ -16,6 +19,9 @@ pub mod uniforms;
 
 mod frame;
 mod renderer;
+mod still;
 
+pub use frame::FrameInputs;
 pub use outputs::{Aov, AovImage, Composite};
 pub use renderer::Renderer;
+pub use still::check_finite;

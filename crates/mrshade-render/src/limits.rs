@@ -9,27 +9,20 @@
 //! for this device, an output too large) is an error naming the input and the limit, before
 //! wgpu would fail with a validation error.
 
-use crate::dir::GpuPoint;
-use crate::passes::rsm;
 use crate::scene_gpu::{GpuInstance, GpuMaterial, MAX_FRUSTUM_HALF_ANGLE, Vertex};
 use anyhow::{Result, bail};
-use mrshade_core::settings::{Method, RenderSettings};
+use mrshade_core::settings::RenderSettings;
 use mrshade_scene::{LightKind, OutputSize, Scene, Session};
 use std::mem::size_of;
 
 /// Bytes of one compute-raster view beyond its target: its big-triangle list (16384 records
 /// of 80 bytes, `raster::BIG_CAPACITY × raster::BIG_RECORD_BYTES`).
-const VIEW_BYTES: u64 = 16384 * 80;
-/// Bytes of an ISM point.
-const POINT_BYTES: u64 = size_of::<GpuPoint>() as u64;
+pub(crate) const VIEW_BYTES: u64 = 16384 * 80;
 /// Bytes per internal pixel of the screen targets every method has: the G-buffer (six
 /// targets, 44 bytes), its visibility buffer (8), `L_rv` and `L_r` (16); per output pixel the
 /// photo, the composite and α (40).
 const SCREEN_BYTES: u64 = 44 + 8 + 16;
 const OUTPUT_BYTES: u64 = 40;
-/// Bytes per internal pixel that `dir` adds: four sets of five RGBA16F indirect targets
-/// (interleaved, two histories, merged) and the previous depth and normal (16).
-const DIR_SCREEN_BYTES: u64 = 4 * 5 * 8 + 16;
 /// Bytes per scene vertex, index, placed triangle, placed primitive and material on the GPU.
 const VERTEX_BYTES: u64 = size_of::<Vertex>() as u64;
 const INDEX_BYTES: u64 = 4;
@@ -49,6 +42,36 @@ pub fn shadow_layer_count(scene: &Scene) -> u64 {
             _ => 12,
         })
         .sum()
+}
+
+/// Shrinking settings to a device: what every method's `fit` is given.
+pub struct Fit<'a> {
+    /// Shadow-map layers of the scene's lights (at least 1).
+    pub shadow_layers: u64,
+    /// Largest buffer binding, in bytes.
+    pub max_binding: u64,
+    /// Number of lights, for messages.
+    pub lights: usize,
+    warnings: &'a mut Vec<String>,
+}
+
+impl Fit<'_> {
+    /// Halves `value` (named `name` in the warning) down to `minimum` until `fits`; whether
+    /// it fits in the end.
+    pub fn shrink(&mut self, name: &str, value: &mut u32, fits: &dyn Fn(u64) -> bool, minimum: u32) -> bool {
+        let requested = *value;
+        while *value > minimum && !fits(*value as u64) {
+            *value /= 2;
+        }
+        if *value != requested {
+            self.warnings.push(format!(
+                "{name} = {requested} needs more GPU memory in one buffer than this device binds ({} MiB); using {}",
+                self.max_binding >> 20,
+                *value
+            ));
+        }
+        fits(*value as u64)
+    }
 }
 
 /// What a device allows, from `wgpu::Limits`.
@@ -81,26 +104,12 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
     let mut warnings = Vec::new();
     let max_binding = device.max_binding;
     let layers = shadow_layer_count(scene).max(1);
-    let mut shrink = |name: &str, value: &mut u32, fits: &dyn Fn(u64) -> bool, minimum: u32| -> bool {
-        let requested = *value;
-        while *value > minimum && !fits(*value as u64) {
-            *value /= 2;
-        }
-        if *value != requested {
-            warnings.push(format!(
-                "{name} = {requested} needs more GPU memory in one buffer than this device binds ({} MiB); using {}",
-                max_binding >> 20,
-                *value
-            ));
-        }
-        fits(*value as u64)
-    };
-
+    let mut fit = Fit { shadow_layers: layers, max_binding, lights: scene.lights.len(), warnings: &mut warnings };
     let screen_fits = |ss: u64| {
         let (w, h) = (output.width as u64 * ss, output.height as u64 * ss);
         w <= device.max_texture_side as u64 && h <= device.max_texture_side as u64 && w * h * 8 <= max_binding
     };
-    if !shrink("output.supersample", &mut output.supersample, &screen_fits, 1) {
+    if !fit.shrink("output.supersample", &mut output.supersample, &screen_fits, 1) {
         bail!(
             "the output of {}×{} pixels is larger than this device renders (textures of at most {} pixels a side, \
              a visibility buffer of at most {} MiB); lower --width/--height",
@@ -111,7 +120,7 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
         );
     }
     let shadow_fits = |res: u64| layers * res * res * 8 <= max_binding;
-    if !shrink("shadows.resolution", &mut settings.shadows.resolution, &shadow_fits, 64) {
+    if !fit.shrink("shadows.resolution", &mut settings.shadows.resolution, &shadow_fits, 64) {
         bail!(
             "the scene's {} lights need {layers} shadow-map layers, more than one GPU buffer of this device holds \
              ({} MiB) even at 64×64 texels; remove lights",
@@ -119,24 +128,7 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
-    if settings.method == Method::Dir {
-        let dir = &mut settings.dir;
-        let rsm_fits = |res: u64| layers * res * res * rsm::TEXEL_BYTES <= max_binding;
-        if !shrink("dir.rsm_resolution", &mut dir.rsm_resolution, &rsm_fits, 16) {
-            bail!(
-                "the scene's {} lights need {layers} RSM layers, more than one GPU buffer of this device holds ({} MiB) \
-                 even at 16×16 texels; remove lights",
-                scene.lights.len(),
-                max_binding >> 20
-            );
-        }
-        let tiles_per_row = (dir.vpl_count as f64).sqrt().ceil() as u64;
-        let ism_fits = |res: u64| tiles_per_row * tiles_per_row * res * res * 4 <= max_binding;
-        shrink("dir.ism_resolution", &mut dir.ism_resolution, &ism_fits, 16);
-        let vpls = dir.vpl_count as u64;
-        let points_fit = |points: u64| vpls * points * POINT_BYTES <= max_binding;
-        shrink("dir.points_per_vpl", &mut dir.points_per_vpl, &points_fit, 16);
-    }
+    (crate::methods::entry(settings.method).fit)(&mut settings, &mut fit)?;
     check_scene_buffers(scene, device)?;
     let estimate = estimate(scene, &settings, &output);
     let budget = session.limits.gpu_bytes();
@@ -226,21 +218,7 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
         ),
         ("textures", texture_bytes),
     ];
-    if settings.method == Method::Dir {
-        let d = &settings.dir;
-        let rsm = d.rsm_resolution as u64;
-        let tiles = ((d.vpl_count as f64).sqrt().ceil() as u64).pow(2);
-        let ism = d.ism_resolution as u64;
-        items.extend([
-            ("dir screen targets (output size × supersample²)", internal * DIR_SCREEN_BYTES),
-            ("RSMs (lights × dir.rsm_resolution²)", layers * (rsm * rsm * (8 + rsm::TEXEL_BYTES + 11) + VIEW_BYTES)),
-            ("ISM atlases (dir.vpl_count × dir.ism_resolution²)", 2 * tiles * ism * ism * 4),
-            (
-                "ISM points (dir.vpl_count × dir.points_per_vpl)",
-                2 * d.vpl_count as u64 * d.points_per_vpl as u64 * POINT_BYTES,
-            ),
-        ]);
-    }
+    items.extend((crate::methods::entry(settings.method).estimate)(settings, internal, layers));
     Estimate(items)
 }
 
@@ -277,6 +255,7 @@ mod tests {
             settings: RenderSettings::default(),
             limits: Default::default(),
             warnings: Vec::new(),
+            sequence: None,
         }
     }
 

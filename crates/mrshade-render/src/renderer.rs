@@ -1,16 +1,18 @@
-//! The renderer of one session: GPU scene, passes and targets, created once.
+//! The renderer of one session: GPU scene, passes and targets, built once; frames are then
+//! rendered from per-frame inputs (`crate::frame`).
 
-use crate::dir::DirPasses;
+use crate::methods::{LightTransport, MethodInputs};
 use crate::passes::composite::{CompositePass, CompositeTargets};
 use crate::passes::direct::{DirectPass, radiance_targets};
 use crate::passes::gbuffer::{GBuffer, GBufferPass};
 use crate::passes::shadow::ShadowPass;
+use crate::passes::upload::{PackedPhoto, PhotoUpload};
 use crate::raster::Rasterizer;
 use crate::scene_gpu::GpuScene;
 use crate::uniforms::FrameUniforms;
 use anyhow::Result;
 use mrshade_core::Differential;
-use mrshade_core::settings::{Method, RenderSettings};
+use mrshade_core::camera::CameraView;
 use mrshade_gpu::{GpuContext, Target};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
@@ -18,20 +20,23 @@ use wgpu::util::DeviceExt;
 /// Everything needed to render frames of one session.
 pub struct Renderer {
     pub(crate) uniforms: FrameUniforms,
-    /// The camera's `clip_from_world` without the sub-pixel jitter of still images.
-    pub(crate) camera_clip_from_world: glam::Mat4,
     pub(crate) frame_buffer: wgpu::Buffer,
     /// Frames rendered so far.
     pub(crate) frame_index: u32,
-    pub(crate) settings: RenderSettings,
+    /// The camera of the last frame, without sub-pixel jitter (`None` before the first).
+    pub(crate) previous_clip_from_world: Option<glam::Mat4>,
+    /// The session's own camera and photo: what a frame without inputs of its own shows.
+    pub(crate) session_camera: CameraView,
     pub(crate) scene: GpuScene,
     pub(crate) rasterizer: Rasterizer,
     pub(crate) shadows: ShadowPass,
     pub(crate) gbuffer: GBuffer,
     pub(crate) gbuffer_pass: GBufferPass,
-    pub(crate) dir: Option<DirPasses>,
+    /// The light-transport method (the only place the frame holds it).
+    pub(crate) method: Box<dyn LightTransport>,
     pub(crate) radiance: Differential<Target>,
     pub(crate) direct: DirectPass,
+    pub(crate) photo: PhotoUpload,
     pub(crate) composite_targets: CompositeTargets,
     pub(crate) composite: CompositePass,
     /// Settings this device could not honour, and what was used instead.
@@ -65,17 +70,24 @@ impl Renderer {
         self.scene.geometry.transform(index)
     }
 
+    /// The light-transport method as its concrete type (`None` if another method runs).
+    pub fn method_as<T: 'static>(&self) -> Option<&T> {
+        self.method.as_any().downcast_ref()
+    }
+
     fn build(ctx: &GpuContext, session: &Session) -> Self {
         let device = &ctx.device;
         let scene = GpuScene::new(device, &ctx.queue, session);
-        let uniforms = FrameUniforms::new(session, scene.light_count, scene.probe.radiance_mips);
+        let session_camera = session.view_at(0);
+        let uniforms = FrameUniforms::new(session, &session_camera, scene.light_count, scene.probe.radiance_mips);
         let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame/uniforms"),
             contents: bytemuck::bytes_of(&uniforms),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let photo = upload_photo(ctx, session);
-        let settings = session.settings.clone();
+        let mut photo = PhotoUpload::new(ctx, uniforms.output_size());
+        photo.write(&ctx.queue, &PackedPhoto::new(&session.background));
+        let settings = &session.settings;
         let internal = uniforms.internal_size();
 
         let rasterizer = Rasterizer::new(ctx, &scene.geometry);
@@ -84,27 +96,43 @@ impl Renderer {
         let gbuffer_pass =
             GBufferPass::new(ctx, &frame, &uniforms, &rasterizer, &scene.geometry, &scene.materials, &gbuffer);
         let radiance = radiance_targets(device, internal);
-        let dir = (settings.method == Method::Dir)
-            .then(|| DirPasses::new(ctx, session, &scene, &rasterizer, &frame, &gbuffer, &radiance, internal));
-        let indirect = dir.as_ref().map(|d| &d.filter.merged);
-        let direct = DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, indirect, &radiance);
+        let method = (crate::methods::entry(settings.method).build)(&MethodInputs {
+            ctx,
+            session,
+            scene: &scene,
+            rasterizer: &rasterizer,
+            frame_uniforms: &frame,
+            gbuffer: &gbuffer,
+            radiance: &radiance,
+            internal_size: internal,
+        });
+        let direct =
+            DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, method.indirect(), &radiance);
         let composite_targets = CompositeTargets::new(device, uniforms.output_size());
-        let composite =
-            CompositePass::new(ctx, &frame, &settings.composite, &radiance, &gbuffer.flags, &photo, &composite_targets);
+        let composite = CompositePass::new(
+            ctx,
+            &frame,
+            &settings.composite,
+            &radiance,
+            &gbuffer.flags,
+            &photo.photo,
+            &composite_targets,
+        );
         Self {
-            camera_clip_from_world: uniforms.clip_from_world,
             uniforms,
             frame_buffer: frame,
             frame_index: 0,
-            settings,
+            previous_clip_from_world: None,
+            session_camera,
             scene,
             rasterizer,
             shadows,
             gbuffer,
             gbuffer_pass,
-            dir,
+            method,
             radiance,
             direct,
+            photo,
             composite_targets,
             composite,
             warnings: Vec::new(),
@@ -121,30 +149,13 @@ impl Renderer {
         self.uniforms.internal_size()
     }
 
+    /// Bytes one photo upload moves to the GPU.
+    pub fn photo_upload_bytes(&self) -> u64 {
+        self.photo.bytes()
+    }
+
     /// The session's exposure.
     pub fn exposure(&self) -> f32 {
         self.uniforms.exposure_env.x
     }
-}
-
-/// The photo as linear `Rgba32Float` (exact: decoded on the CPU from the 8-bit table).
-fn upload_photo(ctx: &GpuContext, session: &Session) -> Target {
-    let bg = &session.background;
-    let target = Target::new_2d(
-        &ctx.device,
-        "composite/photo",
-        (bg.width, bg.height),
-        wgpu::TextureFormat::Rgba32Float,
-        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-    );
-    let texels: Vec<f32> = bg.pixels.iter().flat_map(|p| [p[0], p[1], p[2], 1.0]).collect();
-    mrshade_gpu::texture::write_level(
-        &ctx.queue,
-        &target.texture,
-        0,
-        (bg.width, bg.height),
-        16,
-        bytemuck::cast_slice(&texels),
-    );
-    target
 }

@@ -1,8 +1,9 @@
-//! Per-frame constants (`Frame` in shaders/lib/frame.wgsl), built from the session's camera.
+//! Per-frame constants (`Frame` in shaders/lib/frame.wgsl): the frame's camera, sizes, probe.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec4};
-use mrshade_core::math::{clip_from_view_perspective, probe_from_world};
+use mrshade_core::camera::CameraView;
+use mrshade_core::math::probe_from_world;
 use mrshade_scene::Session;
 
 /// Mirrors `struct Frame` in `shaders/lib/frame.wgsl`.
@@ -28,14 +29,12 @@ pub struct FrameUniforms {
 }
 
 impl FrameUniforms {
-    /// Constants for rendering `session` with `light_count` lights and `radiance_mips` probe levels.
-    pub fn new(session: &Session, light_count: u32, radiance_mips: u32) -> Self {
-        let camera = &session.scene.cameras[session.camera];
+    /// Constants for rendering `session` through `camera` with `light_count` lights and
+    /// `radiance_mips` probe levels.
+    pub fn new(session: &Session, camera: &CameraView, light_count: u32, radiance_mips: u32) -> Self {
         let out = session.output;
         let (w, h) = (out.width * out.supersample, out.height * out.supersample);
-        let view_from_world = camera.world_from_camera.inverse();
-        let clip_from_view = clip_from_view_perspective(camera.yfov, w as f32 / h as f32, camera.znear);
-        let clip_from_world = clip_from_view * view_from_world;
+        let clip_from_world = camera.clip_from_world(w, h);
         let (rotation, intensity, has_env) = match &session.environment {
             Some(env) => (env.rotation_deg, env.intensity, 1),
             None => (0.0, 0.0, 0),
@@ -50,6 +49,21 @@ impl FrameUniforms {
             counts: UVec4::new(light_count, has_env, out.supersample, radiance_mips),
             exposure_env: Vec4::new(session.exposure, intensity, camera.znear, 0.0),
         }
+    }
+
+    /// Places the camera: `camera` shifted by `jitter` pixels, with `previous` (the last
+    /// frame's unjittered `clip_from_world`) for reprojection. Motion vectors leave the jitter
+    /// out (as in TAA): a still camera's pixel reuses its own history instead of one that
+    /// wanders by up to a pixel every frame, which would blur contact shadows.
+    pub fn set_camera(&mut self, camera: &CameraView, jitter: glam::Vec2, previous: Option<Mat4>) {
+        let (w, h) = self.internal_size();
+        let unjittered = camera.clip_from_world(w, h);
+        let shift = Mat4::from_translation(glam::Vec3::new(2.0 * jitter.x / w as f32, -2.0 * jitter.y / h as f32, 0.0));
+        self.clip_from_world = shift * unjittered;
+        self.world_from_clip = self.clip_from_world.inverse();
+        self.previous_clip_from_world = shift * previous.unwrap_or(unjittered);
+        self.camera_position = camera.world_from_camera.w_axis;
+        self.exposure_env.z = camera.znear;
     }
 
     /// Internal (shading) resolution.

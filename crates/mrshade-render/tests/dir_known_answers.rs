@@ -4,6 +4,7 @@ mod common;
 
 use common::{Rendered, Setup};
 use glam::Vec3;
+use mrshade_render::methods::dir::DirMethod;
 use serde_json::json;
 
 /// A virtual sphere (radius `r`, centre height `h`) over a real plane, under a probe that is
@@ -47,7 +48,7 @@ fn check_sphere_shadow(radius: f32, height: f32, plus_x: [f32; 3]) {
     // Interleaving off: at 32×32 pixels a 4×4 block spans 14 cm of the plane, and its
     // merge would blur the contact shadow being checked.
     let r = floating_sphere(radius, height, plus_x, "[dir]\ninterleave = 1\n");
-    let vis = r.renderer.read_probe_visibility(&r.ctx).unwrap().unwrap();
+    let vis = r.renderer.method_as::<DirMethod>().expect("dir method").read_probe_visibility(&r.ctx).unwrap();
     // The share of each channel's irradiance that comes from the +x half.
     let half_share = plus_x.map(|c| c / (c + 1.0));
     let uniform = plus_x == [1.0; 3];
@@ -123,7 +124,7 @@ fn one_bounce_from_a_spot_matches_the_integral() {
     );
     let (_dir, session) = s.session();
     let r = Rendered::new(session);
-    let indirect = r.renderer.read_indirect(&r.ctx).unwrap().unwrap();
+    let indirect = r.renderer.method_as::<DirMethod>().expect("dir method").read_indirect(&r.ctx).unwrap();
     // CPU integral over the floor in front of the wall.
     let wall_radiance = |q: Vec3| {
         let n = 300;
@@ -186,7 +187,7 @@ fn a_wall_on_a_floor_sees_all_of_the_sky() {
     s.gltf.node(json!({"name": "wall", "mesh": mesh, "translation": [0.2, 0.3, 0.0], "rotation": rot, "extras": {"real": true}}));
     let (_dir, session) = s.session();
     let r = Rendered::new(session);
-    let vis = r.renderer.read_probe_visibility(&r.ctx).unwrap().unwrap();
+    let vis = r.renderer.method_as::<DirMethod>().expect("dir method").read_probe_visibility(&r.ctx).unwrap();
     let mut worst = 1.0f32;
     for y in 0..32 {
         for x in 8..24 {

@@ -6,7 +6,8 @@ mod common;
 
 use common::{Setup, rel};
 use glam::Vec3;
-use mrshade_render::passes::vpl::{GpuVpl, kind};
+use mrshade_render::methods::dir::vpl::{GpuVpl, kind};
+use mrshade_render::methods::dir::{DirMethod, IsmDepths};
 use mrshade_render::scene_gpu::FOV_MARGIN;
 use serde_json::json;
 
@@ -58,7 +59,7 @@ fn a_4x4_rsm_gives_the_expected_vpls() {
     let total: f32 = texels.iter().map(|t| t.1).sum();
     let lit: Vec<_> = texels.iter().filter(|t| t.1 > 0.0).collect();
     assert_eq!(lit.len(), 12, "the corner texels lie outside the cone");
-    let vpls = r.renderer.read_vpls(&r.ctx).unwrap();
+    let vpls = r.renderer.method_as::<DirMethod>().expect("dir method").read_vpls(&r.ctx).unwrap();
     let surface = surface_vpls(&vpls);
     assert_eq!(surface.len(), 16, "every slot holds a VPL");
     for v in surface {
@@ -102,11 +103,11 @@ fn one_vpl_splats_the_expected_ism_depths() {
     let mesh = s.gltf.mesh(&mrshade_testkit::gltf::quad(half), Some(m), true);
     s.gltf.node(json!({"name": "square", "mesh": mesh, "translation": centre.to_array(), "extras": {"real": false}}));
     let r = s.render();
-    let vpls = r.renderer.read_vpls(&r.ctx).unwrap();
+    let vpls = r.renderer.method_as::<DirMethod>().expect("dir method").read_vpls(&r.ctx).unwrap();
     let v = surface_vpls(&vpls)[0];
     let (origin, n) = (v.position.truncate(), v.normal.truncate());
-    let mrshade_render::outputs::IsmDepths { side, tile, depths } =
-        r.renderer.read_ism_depths(&r.ctx).unwrap().unwrap();
+    let IsmDepths { side, tile, depths } =
+        r.renderer.method_as::<DirMethod>().expect("dir method").read_ism_depths(&r.ctx).unwrap();
     assert_eq!(tile, 64);
     let frame = tangent_frame(n);
     let (mut inside, mut filled) = (0, 0);
@@ -211,7 +212,7 @@ fn a_bounce_ray_that_meets_virtual_geometry_first_goes_on_to_a_real_surface_as_a
         true,
     );
     let r = s.render();
-    let vpls = r.renderer.read_vpls(&r.ctx).unwrap();
+    let vpls = r.renderer.method_as::<DirMethod>().expect("dir method").read_vpls(&r.ctx).unwrap();
     // Sources: the lamp (0), then the multiple-bounce source (1).
     let bounce: Vec<&GpuVpl> = surface_vpls(&vpls).into_iter().filter(|v| v.info.y == 1).collect();
     // The first bounce off the floor: lamp → floor → here.

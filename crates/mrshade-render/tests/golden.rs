@@ -5,6 +5,7 @@
 mod common;
 
 use common::{Rendered, Setup};
+use mrshade_core::settings::Method;
 use mrshade_scene::{AssetSource, Session, SessionOverrides};
 use serde_json::json;
 
@@ -18,13 +19,25 @@ fn check(name: &str, r: &Rendered) {
     mrshade_testkit::golden::check(name, &rgb, c.image.width, c.image.height, THRESHOLD);
 }
 
+/// The demo session with every method (`demo_160x120` is the default method's).
 #[test]
 fn demo_session() {
     let demo = AssetSource::dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo"));
-    // 48 frames, not the still's default 256, keep the suite fast.
-    let overrides = SessionOverrides { width: Some(160), set: vec!["output.frames=48".into()], ..Default::default() };
-    let session = Session::load_from(&demo, "session.toml", &overrides).unwrap();
-    check("demo_160x120", &Rendered::new(session));
+    for method in Method::ALL {
+        // 48 frames, not the still's default 256, keep the suite fast.
+        let overrides = SessionOverrides {
+            width: Some(160),
+            method: Some(*method),
+            set: vec![format!("output.frames={}", method.default_still_frames().min(48))],
+            ..Default::default()
+        };
+        let session = Session::load_from(&demo, "session.toml", &overrides).unwrap();
+        let name = match method {
+            Method::Dir => "demo_160x120".to_string(),
+            other => format!("demo_160x120_{}", other.name()),
+        };
+        check(&name, &Rendered::new(session));
+    }
 }
 
 #[test]

@@ -4,6 +4,8 @@
 
 mod common;
 
+use mrshade_core::settings::Method;
+
 use common::{Rendered, Setup};
 use mrshade_core::flags::{SURFACE_COVERED, SURFACE_REAL};
 use mrshade_core::settings::CompositeSettings;
@@ -37,31 +39,45 @@ fn composite_bytes(r: &Rendered) -> Vec<u8> {
     r.renderer.read_composite(&r.ctx).unwrap().image.to_srgb8()
 }
 
-/// The `dir` method (few frames: its multiple bounces and smoothing run from frame 2 on).
-const DIR: &str = "[output]\nframes = 3\n";
+/// Settings per method that keep these tests fast: `dir` over a few frames (its multiple
+/// bounces and smoothing run from frame 2 on).
+fn method_toml(method: Method) -> String {
+    let frames = match method {
+        Method::Dir => "[output]\nframes = 3\n",
+        _ => "",
+    };
+    format!("method = \"{}\"\n{frames}", method.name())
+}
 
 #[test]
 fn no_virtual_content_returns_the_photo() {
-    for extra in ["", "[output]\nsupersample = 2\n", "[composite]\nmode = \"additive\"\n", DIR] {
-        let mut s = scene(false, false, extra);
-        if extra == DIR {
-            s.top_toml = "method = \"dir\"\n".into();
+    for method in Method::ALL {
+        for extra in ["", "[output]\nsupersample = 2\n", "[composite]\nmode = \"additive\"\n"] {
+            let toml = method_toml(*method);
+            let (top, table) = toml.split_once('\n').unwrap();
+            if extra.starts_with("[output]") && !table.is_empty() {
+                continue; // `dir`'s [output] table is already given
+            }
+            let mut s = scene(false, false, &format!("{table}{extra}"));
+            s.top_toml = format!("{top}\n");
+            let r = s.render();
+            let (photo, out) = (photo_bytes(&s), composite_bytes(&r));
+            let max = photo.iter().zip(&out).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
+            assert!(max <= 1, "max difference {max}/255 with {} and {extra:?}", method.name());
+            assert_eq!(photo, out, "in fact bit-exact ({} {extra:?})", method.name());
         }
-        let r = s.render();
-        let (photo, out) = (photo_bytes(&s), composite_bytes(&r));
-        let max = photo.iter().zip(&out).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
-        assert!(max <= 1, "max difference {max}/255 with settings {extra:?}");
-        assert_eq!(photo, out, "in fact bit-exact ({extra:?})");
     }
 }
 
 #[test]
 fn with_every_object_real_l_rv_equals_l_r_exactly() {
-    for method in ["direct", "dir"] {
-        let mut s = scene(true, true, DIR);
-        s.top_toml = format!("method = \"{method}\"\n");
+    for method in Method::ALL {
+        let toml = method_toml(*method);
+        let (top, table) = toml.split_once('\n').unwrap();
+        let mut s = scene(true, true, table);
+        s.top_toml = format!("{top}\n");
         let r = s.render();
-        assert_eq!(r.radiance.rv.pixels, r.radiance.r.pixels, "{method}");
+        assert_eq!(r.radiance.rv.pixels, r.radiance.r.pixels, "{}", method.name());
     }
 }
 
@@ -86,7 +102,8 @@ fn the_composite_is_the_documented_formula() {
         let mut virtual_pixels = 0;
         #[allow(clippy::needless_range_loop, reason = "one index walks six parallel images")]
         for i in 0..(SIZE * SIZE) as usize {
-            let photo = r.session.background.pixels[i];
+            // The photo is uploaded as half floats (passes/upload).
+            let photo = r.session.background.pixels[i].map(|v| half::f16::from_f32(v).to_f32());
             let (rv, lr) = (r.radiance.rv.pixels[i], r.radiance.r.pixels[i]);
             let is_virtual = flags[i] & SURFACE_COVERED != 0 && flags[i] & SURFACE_REAL == 0;
             virtual_pixels += is_virtual as u32;

@@ -1,7 +1,8 @@
 //! Tier 1 (no GPU): every composed shader validates with naga, and every struct shared by
 //! Rust and WGSL has the same size and member offsets on both sides.
 
-use mrshade_render::passes::{composite, direct, filter, gbuffer, indirect, ism, rsm, vpl};
+use mrshade_render::methods::dir::{filter, indirect, ism, rsm, vpl};
+use mrshade_render::passes::{composite, direct, gbuffer};
 use mrshade_render::raster;
 use mrshade_render::scene_gpu::{GpuInstance, GpuLight, GpuMaterial};
 use mrshade_render::uniforms::FrameUniforms;

@@ -1,8 +1,10 @@
-//! The session file (TOML): which glTF, which photo, which probe, how to render.
+//! The session file (TOML): which glTF, which photo (or posed image sequence), which probe,
+//! how to render.
 //!
 //! ```toml
 //! scene = "scene.gltf"          # glTF 2.0 (.gltf or .glb), relative to this file
 //! background = "background.png" # the camera photo: PNG/JPEG (sRGB) or EXR (linear)
+//!                               # (or, instead, [sequence] transforms)
 //! exposure = 0.96               # linear camera value = exposure × scene radiance
 //! camera = "camera"             # optional: glTF camera by node or camera name (default: the first)
 //! method = "dir"                # optional: light-transport method ("dir" or "direct")
@@ -19,15 +21,28 @@
 //! [shadows]                     # optional: see mrshade_core::settings::ShadowSettings
 //! [dir]                         # optional: see mrshade_core::settings::DirSettings
 //! [reference]                   # optional: see mrshade_core::settings::ReferenceSettings
+//! [sequence]                    # optional: a posed image sequence (see crate::sequence)
+//! transforms = "transforms.json" # nerfstudio / instant-ngp poses and photos, instead of `background`
+//! fps = 30                      # frames per second (default 30): frame k is at time k / fps
+//! samples = 4                   # jittered frames averaged per footage frame (anti-aliasing; 1 = real time)
+//! # frames = 48                 # instead of `transforms`, with `background`: 48 frames of that photo
 //! ```
 //! Parsing is strict: an unknown key, a wrong type, a missing file, or a photo whose aspect
 //! ratio does not match the camera is an error naming the file and the field.
+//!
+//! Exactly one of `background` and `[sequence] transforms` is given. A `transforms` session
+//! takes its cameras from the JSON: the glTF's camera, if any, gives only the near plane, and
+//! its aspect ratio is not checked. `background` holds frame 0's photo and the output size
+//! defaults to its size; [`Session::photo_at`] and [`Session::view_at`] give any frame's.
 
 use crate::assets::ReadPolicy;
 use crate::budget::Budget;
-use crate::{AssetSource, Scene, gltf::load_gltf, images};
+use crate::sequence::{DEFAULT_FPS, DEFAULT_SAMPLES, DEFAULT_ZNEAR, MAX_SAMPLES, Sequence, SequenceFrame, check_fps};
+use crate::{AssetSource, Camera, Scene, gltf::load_gltf, images};
 use anyhow::{Context, Result, bail};
+use glam::Mat4;
 use mrshade_core::HdrImage;
+use mrshade_core::camera::{CameraView, Intrinsics};
 use mrshade_core::settings::{
     CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, RenderSettings, ShadowSettings,
 };
@@ -53,7 +68,7 @@ const EXPOSURE_RANGE: std::ops::RangeInclusive<f32> = 1e-12..=1e12;
 #[serde(deny_unknown_fields)]
 struct SessionFile {
     scene: String,
-    background: String,
+    background: Option<String>,
     #[serde(default = "one")]
     exposure: f32,
     camera: Option<String>,
@@ -72,6 +87,26 @@ struct SessionFile {
     reference: ReferenceSettings,
     #[serde(default)]
     limits: Limits,
+    sequence: Option<SequenceFile>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SequenceFile {
+    transforms: Option<String>,
+    frames: Option<u32>,
+    #[serde(default = "default_fps")]
+    fps: f32,
+    #[serde(default = "default_samples")]
+    samples: u32,
+}
+
+fn default_samples() -> u32 {
+    DEFAULT_SAMPLES
+}
+
+fn default_fps() -> f32 {
+    DEFAULT_FPS
 }
 
 #[derive(Deserialize)]
@@ -122,17 +157,6 @@ pub struct OutputSize {
     pub frames: u32,
 }
 
-/// Frames a still image takes by default: one for `direct`; 256 for `dir`, whose multiple
-/// bounces build up over the first frames and whose still-scene smoothing then averages the
-/// VPLs of about 250 frames (`dir.temporal.static_confidence`), the last 128 frames' composites
-/// being averaged with sub-pixel jitter. Milliseconds on a GPU; minutes on lavapipe.
-pub fn default_frames(method: Method) -> u32 {
-    match method {
-        Method::Direct => 1,
-        Method::Dir => 256,
-    }
-}
-
 /// Command-line changes applied before the session is parsed, so they are checked as
 /// strictly as the file itself.
 #[derive(Clone, Debug, Default)]
@@ -152,16 +176,22 @@ pub struct SessionOverrides {
     pub allow_read: Vec<PathBuf>,
 }
 
-/// A loaded, checked session: everything a renderer needs for one frame.
+/// Name of the camera a `transforms` session adds to `scene.cameras` when its glTF has none.
+pub const SEQUENCE_CAMERA: &str = "sequence frame 0";
+
+/// A loaded, checked session: everything a renderer needs for one frame (or, with a
+/// [`Sequence`], for each: [`Session::photo_at`], [`Session::view_at`]).
 #[derive(Clone, Debug)]
 pub struct Session {
     /// Where it came from, for messages.
     pub origin: String,
     /// Real proxy and virtual content.
     pub scene: Scene,
-    /// Index of the render camera in `scene.cameras`.
+    /// Index of the render camera in `scene.cameras`: always valid. When a `transforms`
+    /// session's glTF has no camera, one is appended, named [`SEQUENCE_CAMERA`], with frame 0's
+    /// pose and vertical field of view and a near plane of [`DEFAULT_ZNEAR`].
     pub camera: usize,
-    /// The photo, linear, resampled to the output size.
+    /// The photo (frame 0's in a `transforms` session), linear, resampled to the output size.
     pub background: HdrImage,
     /// Linear camera value = exposure × radiance.
     pub exposure: f32,
@@ -175,6 +205,8 @@ pub struct Session {
     pub limits: Limits,
     /// What could not be honoured exactly (from the glTF and the probe).
     pub warnings: Vec<String>,
+    /// The frames of a sequence (`[sequence]`); `None` for a still.
+    pub sequence: Option<Sequence>,
 }
 
 impl Session {
@@ -199,7 +231,55 @@ impl Session {
         let origin = source.display(rel);
         load(source, rel, overrides, origin.clone()).with_context(|| format!("session {origin}"))
     }
+
+    /// Frames to render: the sequence's, or 1 for a still.
+    pub fn frame_count(&self) -> usize {
+        self.sequence.as_ref().map_or(1, |s| s.frames.len())
+    }
+
+    /// Frame `k`'s photo, linear, resampled to the output size (for a still and a repeated
+    /// photo, `background`); a `transforms` frame's is read and decoded now, under the
+    /// session's limits.
+    pub fn photo_at(&self, k: usize) -> Result<HdrImage> {
+        let count = self.frame_count();
+        if k >= count {
+            bail!("session {}: there is no frame {k} (the session has {count})", self.origin);
+        }
+        let (width, height) = (self.output.width, self.output.height);
+        match &self.sequence {
+            Some(seq) if seq.from_transforms => {
+                let photo = seq
+                    .photo(k, &self.limits)
+                    .with_context(|| format!("session {}: field `sequence.transforms`", self.origin))?;
+                Ok(photo.resized(width, height))
+            }
+            _ => Ok(self.background.resized(width, height)),
+        }
+    }
+
+    /// Frame `k`'s camera (the last frame's past the end), its intrinsics in pixels of the
+    /// output size. A `transforms` frame's pose and intrinsics, with the near plane of the
+    /// render camera; otherwise the render camera (its rest pose) as a centred pinhole of its
+    /// vertical field of view.
+    pub fn view_at(&self, k: usize) -> CameraView {
+        let (width, height) = (self.output.width, self.output.height);
+        let camera = self.scene.cameras.get(self.camera);
+        let znear = camera.map_or(DEFAULT_ZNEAR, |c| c.znear);
+        if let Some(seq) = self.sequence.as_ref().filter(|s| s.from_transforms)
+            && let Some(frame) = seq.frames.get(k.min(seq.frames.len().saturating_sub(1)))
+        {
+            let intrinsics = frame.intrinsics.scaled_to(width, height);
+            return CameraView { world_from_camera: frame.world_from_camera, intrinsics, znear };
+        }
+        let (world_from_camera, yfov) =
+            camera.map_or((Mat4::IDENTITY, DEFAULT_YFOV), |c| (c.world_from_camera, c.yfov));
+        CameraView { world_from_camera, intrinsics: Intrinsics::from_yfov(yfov, width, height), znear }
+    }
 }
+
+/// Vertical field of view of [`Session::view_at`] for a session without a camera (one built
+/// by hand), in radians.
+const DEFAULT_YFOV: f32 = 0.8;
 
 fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: String) -> Result<Session> {
     let text = String::from_utf8(source.read(rel)?).context("the file is not UTF-8 text")?;
@@ -207,6 +287,8 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
     let field = |name: &str| format!("field `{name}`");
     file.limits.validate().map_err(anyhow::Error::msg)?;
     let folder = readable_folder(source, rel, &file.limits, overrides);
+    let (background, transforms, repeat) = photo_sources(&file, &file.limits)?;
+    let fps = file.sequence.as_ref().map_or(DEFAULT_FPS, |s| s.fps);
     let limits = file.limits;
 
     if !EXPOSURE_RANGE.contains(&file.exposure) {
@@ -227,7 +309,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
     };
     settings.validate().map_err(anyhow::Error::msg)?;
 
-    let scene = load_gltf(&folder, &file.scene, &limits).with_context(|| field("scene"))?;
+    let mut scene = load_gltf(&folder, &file.scene, &limits).with_context(|| field("scene"))?;
     if scene.lights.len() > limits.lights as usize {
         bail!(
             "{}: the scene has {} lights, more than `limits.lights` = {} (each needs up to 12 shadow-map layers on \
@@ -237,7 +319,20 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
             limits.lights
         );
     }
-    let camera = pick_camera(&scene, file.camera.as_deref()).with_context(|| field("camera"))?;
+    let sequence = match &transforms {
+        Some(rel) => {
+            Some(Sequence::load_transforms(&folder, rel, fps, &limits).with_context(|| field("sequence.transforms"))?)
+        }
+        None => None,
+    };
+    // The poses give a `transforms` session its cameras; a glTF without one gets frame 0's.
+    let camera = match sequence.as_ref().and_then(|s| s.frames.first()) {
+        Some(first) if scene.cameras.is_empty() && file.camera.is_none() => {
+            scene.cameras.push(sequence_camera(first));
+            scene.cameras.len() - 1
+        }
+        _ => pick_camera(&scene, file.camera.as_deref()).with_context(|| field("camera"))?,
+    };
     // A weight for a source that does not exist (a misspelt light name) would be ignored.
     let sources: Vec<&str> =
         scene.lights.iter().map(|l| l.name.as_str()).chain(["environment", "environment_bounce", "bounce"]).collect();
@@ -246,9 +341,16 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
     }
 
     let budget = Budget::new(&limits);
-    let photo = images::decode_photo(&folder.read(&file.background).with_context(|| field("background"))?, &budget)
-        .with_context(|| format!("{}: {}", field("background"), folder.display(&file.background)))?;
-    if let Some(aspect) = scene.cameras[camera].aspect_ratio.filter(|_| !overrides.stretch_photo) {
+    let photo = match (&sequence, background.as_deref()) {
+        (Some(seq), _) => seq.photo(0, &limits).with_context(|| field("sequence.transforms"))?,
+        (None, background) => {
+            let background = background.unwrap_or_default();
+            images::decode_photo(&folder.read(background).with_context(|| field("background"))?, &budget)
+                .with_context(|| format!("{}: {}", field("background"), folder.display(background)))?
+        }
+    };
+    if let Some(aspect) = scene.cameras[camera].aspect_ratio.filter(|_| !overrides.stretch_photo && sequence.is_none())
+    {
         check_aspect(photo.aspect(), aspect).with_context(|| {
             format!(
                 "{}: the photo is {}×{} but camera '{}' has aspectRatio {aspect:.4}",
@@ -261,6 +363,41 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
     }
     let output =
         output_size(&file.output, overrides, &photo, settings.method, &budget).with_context(|| field("output"))?;
+    if let Some(k) = sequence.as_ref().and_then(|s| s.frames.first()).map(|f| f.intrinsics)
+        && !overrides.stretch_photo
+    {
+        check_aspect(output.width as f32 / output.height as f32, k.width as f32 / k.height as f32).with_context(
+            || {
+                format!(
+                    "{}: the output is {}×{} but the cameras of `sequence.transforms` are {}×{}",
+                    field("output"),
+                    output.width,
+                    output.height,
+                    k.width,
+                    k.height
+                )
+            },
+        )?;
+    }
+    let sequence = match (sequence, repeat, background.as_deref()) {
+        (Some(seq), ..) => Some(seq),
+        (None, Some(count), Some(background)) => {
+            let c = &scene.cameras[camera];
+            let intrinsics = Intrinsics::from_yfov(c.yfov, photo.width, photo.height);
+            Some(Sequence::repeated(&folder, background, count, fps, c.world_from_camera, intrinsics))
+        }
+        _ => None,
+    };
+    let sequence = match (sequence, &file.sequence) {
+        (Some(mut seq), Some(table)) => {
+            if !(1..=MAX_SAMPLES).contains(&table.samples) {
+                bail!("{}: must be between 1 and {MAX_SAMPLES}, got {}", field("sequence.samples"), table.samples);
+            }
+            seq.samples = table.samples;
+            Some(seq)
+        }
+        (seq, _) => seq,
+    };
     let background = photo.resized(output.width, output.height);
 
     let mut warnings = scene.warnings.clone();
@@ -302,7 +439,60 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         settings,
         limits,
         warnings,
+        sequence,
     })
+}
+
+/// Checks that exactly one of `background` and `[sequence] transforms` is given, and the rest
+/// of `[sequence]`: the photo, the transforms file and the number of frames of the photo.
+fn photo_sources(file: &SessionFile, limits: &Limits) -> Result<(Option<String>, Option<String>, Option<usize>)> {
+    let field = |name: &str| format!("field `{name}`");
+    let Some(seq) = &file.sequence else {
+        let background = file.background.clone();
+        background.as_ref().with_context(|| {
+            format!(
+                "{}: missing: give the camera photo, or `[sequence] transforms` (posed images)",
+                field("background")
+            )
+        })?;
+        return Ok((background, None, None));
+    };
+    check_fps(seq.fps)?;
+    match (&file.background, &seq.transforms, seq.frames) {
+        (Some(_), Some(_), _) => bail!(
+            "{}: give either `background` (one photo) or `[sequence] transforms` (posed images), not both",
+            field("background")
+        ),
+        (None, None, _) => bail!(
+            "{}: missing: give the camera photo (with `[sequence] frames`), or `[sequence] transforms` (posed images)",
+            field("background")
+        ),
+        (_, Some(_), Some(_)) => {
+            bail!("{}: not with `sequence.transforms`, whose file lists the frames", field("sequence.frames"))
+        }
+        (Some(_), None, None) => bail!(
+            "{}: missing: with `background`, `[sequence]` needs the number of frames of that photo",
+            field("sequence.frames")
+        ),
+        (_, _, Some(n)) if !(1..=limits.sequence_frames).contains(&n) => bail!(
+            "{}: must be between 1 and `limits.sequence_frames` = {}, got {n}",
+            field("sequence.frames"),
+            limits.sequence_frames
+        ),
+        _ => Ok((file.background.clone(), seq.transforms.clone(), seq.frames.map(|n| n as usize))),
+    }
+}
+
+/// The render camera of a `transforms` session whose glTF has none: frame 0's.
+fn sequence_camera(frame: &SequenceFrame) -> Camera {
+    Camera {
+        node_name: SEQUENCE_CAMERA.into(),
+        camera_name: None,
+        yfov: frame.intrinsics.yfov(),
+        aspect_ratio: None,
+        znear: DEFAULT_ZNEAR,
+        world_from_camera: frame.world_from_camera,
+    }
 }
 
 /// The session's folder, readable under the session's folder, the folders `limits.allow_read`
@@ -438,7 +628,7 @@ fn output_size(
     if !(1..=4).contains(&supersample) {
         bail!("supersample must be between 1 and 4, got {supersample}");
     }
-    let frames = file.frames.unwrap_or(default_frames(method));
+    let frames = file.frames.unwrap_or(method.default_still_frames());
     if !(1..=10_000).contains(&frames) {
         bail!("frames must be between 1 and 10000, got {frames}");
     }

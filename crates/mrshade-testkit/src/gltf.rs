@@ -88,6 +88,7 @@ pub struct GltfBuilder {
     roots: Vec<usize>,
     lights: Vec<Value>,
     cameras: Vec<Value>,
+    animations: Vec<Value>,
     extensions_used: Vec<String>,
     extensions_required: Vec<String>,
 }
@@ -128,6 +129,25 @@ impl GltfBuilder {
             }
             acc["min"] = json!(lo);
             acc["max"] = json!(hi);
+        }
+        self.accessors.push(acc);
+        self.accessors.len() - 1
+    }
+
+    /// An accessor of `count` elements of `ty` ("VEC4", …) with glTF `component_type` (5120
+    /// BYTE … 5126 FLOAT) over raw little-endian `bytes`; `normalized` integers.
+    pub fn accessor_bytes(
+        &mut self,
+        bytes: &[u8],
+        component_type: u32,
+        ty: &str,
+        count: usize,
+        normalized: bool,
+    ) -> usize {
+        let view = self.view(bytes);
+        let mut acc = json!({"bufferView": view, "componentType": component_type, "count": count, "type": ty});
+        if normalized {
+            acc["normalized"] = json!(true);
         }
         self.accessors.push(acc);
         self.accessors.len() - 1
@@ -226,6 +246,12 @@ impl GltfBuilder {
         self.node(json!({"name": name, "camera": cam, "translation": translation, "rotation": rotation}))
     }
 
+    /// An animation from its JSON (its samplers name accessors made here).
+    pub fn animation(&mut self, animation: Value) -> usize {
+        self.animations.push(animation);
+        self.animations.len() - 1
+    }
+
     /// Lists an extension as used (and required).
     pub fn use_extension(&mut self, name: &str, required: bool) {
         if !self.extensions_used.iter().any(|e| e == name) {
@@ -259,6 +285,9 @@ impl GltfBuilder {
             "buffers": [buffer],
             "cameras": self.cameras,
         });
+        if !self.animations.is_empty() {
+            doc["animations"] = json!(self.animations);
+        }
         if !self.lights.is_empty() {
             doc["extensions"] = json!({"KHR_lights_punctual": {"lights": self.lights}});
         }

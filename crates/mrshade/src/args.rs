@@ -82,19 +82,44 @@ fn method_names() -> Vec<&'static str> {
     Method::ALL.iter().map(|m| m.name()).collect()
 }
 
+/// What `eval --method` takes: every real-time method, the reference, and `all` of them.
+fn eval_method_names() -> Vec<&'static str> {
+    method_names().into_iter().chain(["reference", "all"]).collect()
+}
+
 /// `mrshade render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     /// The session and its overrides.
     #[command(flatten)]
     pub session: SessionArgs,
-    /// Output image: .png (sRGB), .exr (linear camera values) or .jpg.
-    #[arg(short, long, value_name = "OUT")]
-    pub output: PathBuf,
+    /// Output image: .png (sRGB), .exr (linear camera values) or .jpg. For a sequence
+    /// session, a folder (written as OUT/NNNN.png, numbered as the input frames; see --format).
+    #[arg(short, long, value_name = "OUT", required_unless_present = "video")]
+    pub output: Option<PathBuf>,
     /// Also write the AOVs here: l_rv.exr, l_r.exr, alpha.exr, difference.exr and
-    /// difference_signed.png, virtual_mask.png, normals.png, flags.png, side_by_side.png.
+    /// difference_signed.png, virtual_mask.png, normals.png, flags.png, side_by_side.png
+    /// (for a sequence, one folder per frame: DIR/NNNN/).
     #[arg(long, value_name = "DIR")]
     pub aov_dir: Option<PathBuf>,
+    /// Sequence: render frame K alone as a converged still (as for a photo) into OUT.
+    #[arg(long, value_name = "K", conflicts_with_all = ["frames", "video"])]
+    pub frame: Option<usize>,
+    /// Sequence: render frames A..B (B excluded; A..=B includes it) only. Earlier frames
+    /// are rendered first and not written, so that the range matches the whole run's frames:
+    /// shard a long sequence across machines with it (README: GNU parallel, Slurm).
+    #[arg(long, value_name = "A..B")]
+    pub frames: Option<String>,
+    /// Sequence: frames rendered (unwritten) before a --frames range starts.
+    #[arg(long, value_name = "N", default_value_t = mrshade_render::footage::RANGE_WARMUP_FRAMES)]
+    pub warmup: usize,
+    /// Sequence: image format of the frames in the OUT folder.
+    #[arg(long, value_name = "FORMAT", default_value = "png", value_parser = ["png", "exr", "jpg"])]
+    pub format: String,
+    /// Sequence: also encode the frames into this video with ffmpeg (H.264, at the session's
+    /// fps), which must be installed.
+    #[arg(long, value_name = "OUT.mp4")]
+    pub video: Option<PathBuf>,
 }
 
 /// `mrshade demo`.
@@ -155,11 +180,14 @@ pub struct ReferenceArgs {
 #[derive(Args, Debug)]
 pub struct EvalArgs {
     /// Dataset folders, each with session.toml, background.png and ground_truth.png (the
-    /// layout of the benchmark's scenes).
+    /// layout of the benchmark's scenes); or a sequence: session.toml with `[sequence]
+    /// transforms`, the frames it lists and ground_truth/NAME.png per frame (NAME: the frame
+    /// image's stem), played as footage and scored frame by frame.
     #[arg(value_name = "DATASET", required = true)]
     pub datasets: Vec<PathBuf>,
-    /// Methods to run (repeatable or comma-separated): dir, direct, reference.
-    #[arg(long, value_delimiter = ',', default_value = "dir", value_parser = ["dir", "direct", "reference"])]
+    /// Methods to run (repeatable or comma-separated): the real-time methods, and
+    /// `reference` (the CPU path tracer), or `all`.
+    #[arg(long, value_delimiter = ',', default_value = "dir", value_parser = eval_method_names())]
     pub method: Vec<String>,
     /// Paths per pixel of the reference method (default: the session's, 256).
     #[arg(long, value_name = "N")]
@@ -176,6 +204,10 @@ pub struct EvalArgs {
     /// Write report.md, report.json, index.html and the images here.
     #[arg(long, value_name = "DIR")]
     pub report: Option<PathBuf>,
+    /// Sequences: also render every frame alone as a converged still (as `render --frame K`),
+    /// reported as the method `METHOD-stills`, to compare footage with (real-time methods).
+    #[arg(long)]
+    pub stills: bool,
 }
 
 /// `mrshade info`.

@@ -1,31 +1,11 @@
 //! The command line: help everywhere, one-line errors with a non-zero exit, and the commands
 //! doing their work on the test GPU.
 
+mod common;
+
+use common::{assert_one_line_error, mrshade, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn mrshade(args: &[&str]) -> Output {
-    let runtime = tempfile::tempdir().unwrap();
-    Command::new(env!("CARGO_BIN_EXE_mrshade"))
-        .args(args)
-        // Mesa's WSI complains on stderr when this is unset; keep stderr to our own lines.
-        .env("XDG_RUNTIME_DIR", runtime.path())
-        .output()
-        .expect("run mrshade")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// The command failed with exactly one line on stderr, which names `needle`.
-fn assert_one_line_error(o: &Output, needle: &str) {
-    assert!(!o.status.success(), "expected failure");
-    let err = stderr(o);
-    let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 1, "one line on stderr, got: {err}");
-    assert!(lines[0].starts_with("error: ") && lines[0].contains(needle), "{err}");
-}
+use std::process::Command;
 
 fn demo_session() -> String {
     concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo/session.toml").to_string()

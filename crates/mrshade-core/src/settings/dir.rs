@@ -61,6 +61,12 @@ pub struct TemporalSettings {
     /// Cornell box's region FLIP goes from 0.107 to 0.082 (docs/benchmarks.md). At `c_B` or
     /// below: off, the thesis's smoothing always.
     pub static_confidence: f32,
+    /// Largest share of the previous frame while the camera moves (tracked footage): the
+    /// history is reprojected every frame, and a long memory of reprojected values keeps
+    /// their small misplacements. It also bounds how far back a frame depends on, so that a
+    /// range of a sequence rendered on its own (`render --frames A..B`, after a warm-up)
+    /// matches the whole run. Not in the thesis. Default 0.95 (a window of about 20 frames).
+    pub moving_camera_confidence: f32,
 }
 
 impl Default for TemporalSettings {
@@ -72,6 +78,7 @@ impl Default for TemporalSettings {
             illumination_weight: 0.025,
             base_confidence: 0.9,
             static_confidence: 0.996,
+            moving_camera_confidence: 0.95,
         }
     }
 }
@@ -226,6 +233,11 @@ impl DirSettings {
             format!("must be in [0, 1), got {}", t.static_confidence),
         )?;
         check(
+            (0.0..1.0).contains(&t.moving_camera_confidence),
+            "dir.temporal.moving_camera_confidence",
+            format!("must be in [0, 1), got {}", t.moving_camera_confidence),
+        )?;
+        check(
             t.position_weights
                 .iter()
                 .chain([&t.normal_weight, &t.illumination_weight])
@@ -269,6 +281,9 @@ mod tests {
         let mut d = DirSettings::default();
         d.temporal.static_confidence = 1.0;
         assert!(d.validate().unwrap_err().contains("static_confidence"));
+        d.temporal.static_confidence = 0.5;
+        d.temporal.moving_camera_confidence = f32::NAN;
+        assert!(d.validate().unwrap_err().contains("moving_camera_confidence"));
     }
 
     #[test]

@@ -33,6 +33,9 @@ pub struct Limits {
     /// and the settings before anything is allocated (on a CPU driver such as lavapipe, this
     /// is host memory). Default 4096.
     pub gpu_mib: u64,
+    /// Most frames in a posed image sequence (`[sequence]`: the frames a `transforms.json`
+    /// lists, or `frames`), checked while the list is read. Default 100000 (an hour at 30 fps).
+    pub sequence_frames: u32,
     /// Folders, besides the session's own and each glTF's own, that files may be read from
     /// (relative to the session file, or absolute). By default a session and its glTF files
     /// read nothing outside their folders: a downloaded glTF cannot make mrshade read
@@ -48,6 +51,7 @@ impl Default for Limits {
             scene_mib: 2048,
             lights: 32,
             gpu_mib: 4096,
+            sequence_frames: 100_000,
             allow_read: Vec::new(),
         }
     }
@@ -66,7 +70,12 @@ impl Limits {
         {
             check((1..=1 << 20).contains(&mib), name, format!("must be between 1 and 1048576 (1 TiB), got {mib}"))?;
         }
-        check(self.lights <= 65536, "limits.lights", format!("must be at most 65536, got {}", self.lights))
+        check(self.lights <= 65536, "limits.lights", format!("must be at most 65536, got {}", self.lights))?;
+        check(
+            (1..=10_000_000).contains(&self.sequence_frames),
+            "limits.sequence_frames",
+            format!("must be between 1 and 10000000, got {}", self.sequence_frames),
+        )
     }
 
     /// [`Limits::file_mib`] in bytes.
@@ -96,6 +105,8 @@ mod tests {
         assert!(l.validate().unwrap_err().contains("limits.image_pixels"));
         let l = Limits { scene_mib: 0, ..Default::default() };
         assert!(l.validate().unwrap_err().contains("limits.scene_mib"));
+        let l = Limits { sequence_frames: 0, ..Default::default() };
+        assert!(l.validate().unwrap_err().contains("limits.sequence_frames"));
         assert!(toml::from_str::<Limits>("image_pixel = 5").is_err());
     }
 }

@@ -45,6 +45,18 @@ impl Method {
         }
     }
 
+    /// Frames a still image takes by default: one for `direct`; 256 for `dir`, whose multiple
+    /// bounces build up over the first frames and whose still-scene smoothing then averages
+    /// the VPLs of about 250 frames (`dir.temporal.static_confidence`), the last 128 frames'
+    /// composites being averaged with sub-pixel jitter. Milliseconds on a GPU; minutes on
+    /// lavapipe.
+    pub fn default_still_frames(self) -> u32 {
+        match self {
+            Method::Direct => 1,
+            Method::Dir => 256,
+        }
+    }
+
     /// Parses a method name.
     pub fn from_name(name: &str) -> Result<Self, String> {
         Self::ALL.iter().copied().find(|m| m.name() == name).ok_or_else(|| {

@@ -1,5 +1,6 @@
 //! glTF mutations: the JSON document (any value, references, the node graph, transforms,
-//! cameras, lights, accessors, URIs) and its container (GLB chunks, external `.bin`, data URIs).
+//! cameras, lights, accessors, URIs, animations with their keyframes in the BIN buffer) and
+//! its container (GLB chunks, external `.bin`, data URIs).
 
 use super::{bytes, values};
 use arbitrary::Unstructured;
@@ -20,7 +21,7 @@ pub fn mutate(files: &mut BTreeMap<String, Vec<u8>>, name: &str, u: &mut Unstruc
     };
     let mut steps = Vec::new();
     for _ in 0..u.int_in_range(1..=3u8).unwrap_or(1) {
-        steps.push(mutate_document(&mut doc, u));
+        steps.push(mutate_document(&mut doc, &mut bin, u));
     }
     if u.ratio(1, 6).unwrap_or(false) {
         steps.push(format!("BIN chunk: {}", bytes::mutate(&mut bin, u)));
@@ -96,8 +97,8 @@ fn at<'a>(v: &'a mut Value, path: &[Step]) -> Option<&'a mut Value> {
     })
 }
 
-fn mutate_document(doc: &mut Value, u: &mut Unstructured) -> String {
-    match u.int_in_range(0..=11u8).unwrap_or(0) {
+fn mutate_document(doc: &mut Value, bin: &mut Vec<u8>, u: &mut Unstructured) -> String {
+    match u.int_in_range(0..=12u8).unwrap_or(0) {
         0..=4 => mutate_any_value(doc, u),
         5 => graph(doc, u),
         6 => transform(doc, u),
@@ -105,6 +106,7 @@ fn mutate_document(doc: &mut Value, u: &mut Unstructured) -> String {
         8 => accessor(doc, u),
         9 => uris(doc, u),
         10 => many(doc, u),
+        11 => animation(doc, bin, u),
         _ => references(doc, u),
     }
 }
@@ -389,4 +391,193 @@ fn references(doc: &mut Value, u: &mut Unstructured) -> String {
         obj.insert(key.into(), json!(index));
     }
     format!("{p} = {index} (of {len} {kind})")
+}
+
+/// Animations: a new one (keyframes appended to the BIN buffer, plausible or hostile: times
+/// that repeat, go back or are NaN; zero scales, zero quaternions, 1e30, counts one off,
+/// normalized integer rotations, the wrong accessor types), or an existing one corrupted
+/// (interpolation and path strings, targets, sampler and accessor references, a matrix on the
+/// animated node, a repeated channel), or a channel on every node.
+fn animation(doc: &mut Value, bin: &mut Vec<u8>, u: &mut Unstructured) -> String {
+    let animations = count(doc, "animations");
+    match u.int_in_range(0..=9u8).unwrap_or(0) {
+        0..=4 => new_animation(doc, bin, u),
+        _ if animations == 0 => new_animation(doc, bin, u),
+        5 => {
+            let a = u.choose_index(animations).unwrap_or(0);
+            let text = ["LINEAR", "STEP", "CUBICSPLINE", "SMOOTH", "linear", ""][u.choose_index(6).unwrap_or(0)];
+            if let Some(sampler) =
+                doc.pointer_mut(&format!("/animations/{a}/samplers/0")).and_then(Value::as_object_mut)
+            {
+                sampler.insert("interpolation".into(), json!(text));
+            }
+            format!("animations[{a}].samplers[0].interpolation = {text:?}")
+        }
+        6 => {
+            let a = u.choose_index(animations).unwrap_or(0);
+            let paths = ["translation", "rotation", "scale", "weights", "matrix", ""];
+            let path = paths[u.choose_index(paths.len()).unwrap_or(0)];
+            let nodes = count(doc, "nodes");
+            let node = [0, nodes.saturating_sub(1), nodes, 4294967296][u.choose_index(4).unwrap_or(0)];
+            if let Some(target) = doc.pointer_mut(&format!("/animations/{a}/channels/0/target")) {
+                *target = json!({"node": node, "path": path});
+            }
+            format!("animations[{a}].channels[0].target = {path:?} of node {node}")
+        }
+        7 => {
+            let a = u.choose_index(animations).unwrap_or(0);
+            let accessors = count(doc, "accessors");
+            let index = [0, accessors.saturating_sub(1), accessors, 4294967296][u.choose_index(4).unwrap_or(0)];
+            let key = ["input", "output", "sampler"][u.choose_index(3).unwrap_or(0)];
+            let at = if key == "sampler" { "channels" } else { "samplers" };
+            if let Some(item) = doc.pointer_mut(&format!("/animations/{a}/{at}/0")).and_then(Value::as_object_mut) {
+                item.insert(key.into(), json!(index));
+            }
+            format!("animations[{a}].{at}[0].{key} = {index}")
+        }
+        8 => {
+            let a = u.choose_index(animations).unwrap_or(0);
+            let node = doc.pointer(&format!("/animations/{a}/channels/0/target/node")).and_then(Value::as_u64);
+            let matrix: Vec<f32> = vec![1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+            if let Some(node) =
+                node.and_then(|n| doc.pointer_mut(&format!("/nodes/{n}"))).and_then(Value::as_object_mut)
+            {
+                node.insert("matrix".into(), json!(matrix));
+            }
+            format!("the node of animations[{a}].channels[0] gets a matrix")
+        }
+        _ => {
+            if u.ratio(1, 2).unwrap_or(false) {
+                let a = u.choose_index(animations).unwrap_or(0);
+                if let Some(channels) =
+                    doc.pointer_mut(&format!("/animations/{a}/channels")).and_then(Value::as_array_mut)
+                    && let Some(first) = channels.first().cloned()
+                {
+                    channels.push(first);
+                }
+                return format!("animations[{a}].channels[0] repeated");
+            }
+            // One sampler, a channel on every node: the pose of every node is computed.
+            let sampler = new_sampler(doc, bin, "translation", "LINEAR", u);
+            let channels: Vec<Value> = (0..count(doc, "nodes"))
+                .map(|n| json!({"sampler": 0, "target": {"node": n, "path": "translation"}}))
+                .collect();
+            push(doc, "animations", json!({"name": "everything", "samplers": [sampler], "channels": channels}));
+            format!("an animation of all {} nodes", count(doc, "nodes"))
+        }
+    }
+}
+
+/// An animation of 1 to 3 channels on random nodes (mostly the camera's, the lights', the
+/// meshes'), each with its own new sampler.
+fn new_animation(doc: &mut Value, bin: &mut Vec<u8>, u: &mut Unstructured) -> String {
+    let nodes = count(doc, "nodes").max(1);
+    let (mut samplers, mut channels, mut shown) = (Vec::new(), Vec::new(), Vec::new());
+    for c in 0..u.int_in_range(1..=3usize).unwrap_or(1) {
+        let paths = ["translation", "rotation", "scale", "rotation", "scale", "weights"];
+        let path = paths[u.choose_index(paths.len()).unwrap_or(0)];
+        let interpolations = ["LINEAR", "STEP", "CUBICSPLINE", "LINEAR"];
+        let interpolation = interpolations[u.choose_index(interpolations.len()).unwrap_or(0)];
+        let node = if u.ratio(1, 12).unwrap_or(false) { nodes } else { u.choose_index(nodes).unwrap_or(0) };
+        samplers.push(new_sampler(doc, bin, path, interpolation, u));
+        channels.push(json!({"sampler": c, "target": {"node": node, "path": path}}));
+        shown.push(format!("{interpolation} {path} of node {node}"));
+    }
+    push(doc, "animations", json!({"name": "fuzz", "samplers": samplers, "channels": channels}));
+    format!("an animation: {}", shown.join(", "))
+}
+
+/// A sampler for `path` whose keyframes are appended to `bin`: well-formed two times in
+/// three (so that poses get sampled), else with one fault.
+fn new_sampler(doc: &mut Value, bin: &mut Vec<u8>, path: &str, interpolation: &str, u: &mut Unstructured) -> Value {
+    let fault = u.int_in_range(0..=11u8).unwrap_or(11);
+    let keys = u.int_in_range(1..=5usize).unwrap_or(2);
+    let step = [1.0 / 24.0, 0.5, 1.0, 1e-7, 1e30][u.choose_index(5).unwrap_or(0)];
+    let mut times: Vec<f32> = (0..keys).map(|k| k as f32 * step).collect();
+    if fault == 0 {
+        let k = u.choose_index(keys).unwrap_or(0);
+        times[k] =
+            [f32::NAN, -1.0, 0.0, f32::INFINITY, values::number(u, Some(1.0)) as f32][u.choose_index(5).unwrap_or(0)];
+    }
+    let input = push_floats(doc, bin, &times, "SCALAR");
+    let per_key = if interpolation == "CUBICSPLINE" { 3 } else { 1 };
+    let off_by_one = if fault == 1 { [1, -1][u.choose_index(2).unwrap_or(0)] } else { 0 };
+    let elements = (keys * per_key).saturating_add_signed(off_by_one);
+    let (ty, n) = match path {
+        "rotation" => ("VEC4", 4),
+        "weights" => ("SCALAR", 1),
+        _ => ("VEC3", 3),
+    };
+    let plausible: &[f32] = match path {
+        "rotation" => &[0.0, 1.0, -1.0, std::f32::consts::FRAC_1_SQRT_2, 0.5],
+        "scale" => &[1.0, 0.5, 2.0, 1.5, 0.0],
+        _ => &[0.0, 1.0, -1.0, 0.25, 3.0],
+    };
+    let values: Vec<f32> = (0..elements * n)
+        .map(|_| {
+            if fault == 2 && u.ratio(1, 3).unwrap_or(false) {
+                [f32::NAN, 0.0, 1e30, -1e30, 3e38, values::number(u, Some(1.0)) as f32][u.choose_index(6).unwrap_or(0)]
+            } else {
+                plausible[u.choose_index(plausible.len()).unwrap_or(0)]
+            }
+        })
+        .collect();
+    let output = match fault {
+        // The wrong type: the same numbers as other vectors.
+        3 => {
+            let other = ["SCALAR", "VEC2", "VEC3", "VEC4"][u.choose_index(4).unwrap_or(0)];
+            push_floats(doc, bin, &values, other)
+        }
+        // Normalized (or, as a fault, not) SHORT rotations.
+        4 | 5 if path == "rotation" => {
+            let shorts: Vec<u8> =
+                values.iter().flat_map(|v| ((v.clamp(-1.0, 1.0) * 32767.0) as i16).to_le_bytes()).collect();
+            let accessor = json!({"componentType": 5122, "count": elements, "type": "VEC4", "normalized": fault == 4});
+            push_accessor(doc, bin, &shorts, accessor)
+        }
+        _ => push_floats(doc, bin, &values, ty),
+    };
+    json!({"input": input, "output": output, "interpolation": interpolation})
+}
+
+/// Appends `floats` to `bin` as a new FLOAT accessor of `ty`; returns its index.
+fn push_floats(doc: &mut Value, bin: &mut Vec<u8>, floats: &[f32], ty: &str) -> usize {
+    let n = match ty {
+        "SCALAR" => 1,
+        "VEC2" => 2,
+        "VEC3" => 3,
+        _ => 4,
+    };
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    push_accessor(doc, bin, &bytes, json!({"componentType": 5126, "count": floats.len() / n, "type": ty}))
+}
+
+/// Appends `bytes` to `bin` (4-aligned) as a new bufferView of buffer 0 (whose length grows)
+/// and an accessor over it, `accessor` giving its other fields; returns the accessor's index.
+fn push_accessor(doc: &mut Value, bin: &mut Vec<u8>, bytes: &[u8], mut accessor: Value) -> usize {
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let view = json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()});
+    bin.extend_from_slice(bytes);
+    if count(doc, "buffers") == 0 {
+        push(doc, "buffers", json!({"byteLength": 0}));
+    }
+    if let Some(buffer) = doc.pointer_mut("/buffers/0").and_then(Value::as_object_mut) {
+        buffer.insert("byteLength".into(), json!(bin.len()));
+    }
+    accessor["bufferView"] = json!(push(doc, "bufferViews", view));
+    push(doc, "accessors", accessor)
+}
+
+/// Appends `item` to the array `key` of the document (made if missing); returns its index.
+fn push(doc: &mut Value, key: &str, item: Value) -> usize {
+    let Some(root) = doc.as_object_mut() else { return 0 };
+    let entry = root.entry(key).or_insert(json!([]));
+    if !entry.is_array() {
+        *entry = json!([]);
+    }
+    let array = entry.as_array_mut().expect("an array");
+    array.push(item);
+    array.len() - 1
 }

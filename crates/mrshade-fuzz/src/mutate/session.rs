@@ -48,6 +48,10 @@ const KEYS: &[(&str, Kind)] = &[
     ("limits.lights", Kind::Number),
     ("limits.gpu_mib", Kind::Number),
     ("limits.allow_read", Kind::Path),
+    ("limits.sequence_frames", Kind::Number),
+    ("sequence.transforms", Kind::Path),
+    ("sequence.fps", Kind::Number),
+    ("sequence.frames", Kind::Number),
     ("unknown.key", Kind::Number),
 ];
 

@@ -106,6 +106,7 @@ impl Builder {
             settings: RenderSettings { reference: settings, ..RenderSettings::default() },
             limits: Default::default(),
             warnings: Vec::new(),
+            sequence: None,
         }
     }
 }

@@ -1,11 +1,9 @@
-//! The passes of a frame, one folder each with its shaders. `crate::frame` calls them in order.
+//! The passes every method shares, one folder each with its shaders: the photo's upload,
+//! shadow maps, the G-buffer, direct light and the composite. A method's own passes live in `crate::methods`.
+//! `crate::frame` calls them in order.
 
 pub mod composite;
 pub mod direct;
-pub mod filter;
 pub mod gbuffer;
-pub mod indirect;
-pub mod ism;
-pub mod rsm;
 pub mod shadow;
-pub mod vpl;
+pub mod upload;

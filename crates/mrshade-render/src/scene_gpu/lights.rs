@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::ShadowSettings;
-use mrshade_scene::{Light, LightKind, Scene};
+use mrshade_scene::{Light, LightKind};
 
 /// Mirrors `struct Light` in shaders/lib/lights.wgsl.
 #[repr(C)]
@@ -50,16 +50,21 @@ pub struct ShadowLayer {
     pub light: u32,
 }
 
-/// The lights as the shaders see them, and the shadow layers they use.
-pub fn pack_lights(scene: &Scene, settings: &ShadowSettings) -> (Vec<GpuLight>, Vec<ShadowLayer>) {
-    let (center, radius) = match scene.bounds() {
+/// The lights as the shaders see them, and the shadow layers they use; directional maps
+/// cover `bounds` (the scene's box).
+pub fn pack_lights(
+    lights_in: &[Light],
+    bounds: Option<(Vec3, Vec3)>,
+    settings: &ShadowSettings,
+) -> (Vec<GpuLight>, Vec<ShadowLayer>) {
+    let (center, radius) = match bounds {
         Some((lo, hi)) => ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3)),
         None => (Vec3::ZERO, 1.0),
     };
     let near = (radius * 1e-3).clamp(1e-4, 0.05);
     let mut lights = Vec::new();
     let mut layers = Vec::new();
-    for (light_index, light) in scene.lights.iter().enumerate() {
+    for (light_index, light) in lights_in.iter().enumerate() {
         let (kind, cone) = match light.kind {
             LightKind::Point => (LIGHT_POINT, (-2.0, 1.0)),
             LightKind::Directional => (LIGHT_DIRECTIONAL, (-2.0, 1.0)),
@@ -137,7 +142,7 @@ fn look_to(eye: Vec3, dir: Vec3) -> Mat4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mrshade_scene::Light;
+    use mrshade_scene::{Light, Scene};
 
     fn scene_with(kind: LightKind) -> Scene {
         let mut scene = Scene::default();
@@ -152,9 +157,13 @@ mod tests {
         scene
     }
 
+    fn pack(scene: &Scene) -> (Vec<GpuLight>, Vec<ShadowLayer>) {
+        pack_lights(&scene.lights, scene.bounds(), &ShadowSettings::default())
+    }
+
     #[test]
     fn each_light_owns_a_real_and_a_virtual_set() {
-        let (lights, layers) = pack_lights(&scene_with(LightKind::Point), &ShadowSettings::default());
+        let (lights, layers) = pack(&scene_with(LightKind::Point));
         assert_eq!(layers.len(), 12);
         assert_eq!(lights[0].info, UVec4::new(LIGHT_POINT, 0, 6, 6));
         assert!(layers[..6].iter().all(|l| l.casters == Realness::Real));
@@ -164,7 +173,7 @@ mod tests {
     #[test]
     fn spot_map_sees_its_axis_at_the_centre_with_reversed_depth() {
         let spot = LightKind::Spot { inner_cone: 0.3, outer_cone: 0.5 };
-        let (lights, layers) = pack_lights(&scene_with(spot), &ShadowSettings::default());
+        let (lights, layers) = pack(&scene_with(spot));
         assert_eq!(layers.len(), 2);
         // The light hangs at y = 2 looking down −Y.
         assert!(lights[0].direction_real.truncate().abs_diff_eq(Vec3::NEG_Y, 1e-5));
@@ -176,7 +185,7 @@ mod tests {
 
     #[test]
     fn directional_depth_is_reversed_too() {
-        let (_, layers) = pack_lights(&scene_with(LightKind::Directional), &ShadowSettings::default());
+        let (_, layers) = pack(&scene_with(LightKind::Directional));
         let m = layers[0].clip_from_world;
         // Scene bounds are empty (no instances): the box is around the origin, radius 1.
         let top = m.project_point3(Vec3::new(0.0, 0.5, 0.0));

@@ -125,7 +125,7 @@ impl Rendered {
 
     /// Two points (at NDC depths 1 and 0.5) on the camera ray through internal pixel (x, y)'s centre.
     fn pixel_ray(&self, x: u32, y: u32) -> (Vec3, Vec3) {
-        let u = FrameUniforms::new(&self.session, 0, 1);
+        let u = FrameUniforms::new(&self.session, &self.session.view_at(0), 0, 1);
         let (w, h) = u.internal_size();
         let ndc = |depth: f32| {
             let p = u.world_from_clip

@@ -7,7 +7,8 @@
 //! 1. the GLB container is split strictly (its header length must be the file's);
 //! 2. the raw JSON is checked for what typed parsing would lose: `asset.version` and integers
 //!    that cannot be indices or counts;
-//! 3. the references the dependency's validation dereferences unchecked are checked;
+//! 3. the references the dependency's validation dereferences unchecked are checked, and
+//!    what it unwraps (animation paths and interpolations, camera projections);
 //! 4. the dependency's structural validation runs;
 //! 5. the node graph must be a forest (glTF 2.0 §3.5.3): no node with two parents or listed
 //!    twice, no cycle, scene roots that are roots. A directed acyclic graph of 50 nodes can
@@ -218,14 +219,58 @@ fn check_unchecked_references(root: &gltf::json::Root) -> Result<()> {
         }
     }
     for (a, animation) in root.animations.iter().enumerate() {
-        for (c, channel) in animation.channels.iter().enumerate() {
-            let node = channel.target.node.value();
-            if node >= root.nodes.len() {
+        check_animation(root, a, animation)?;
+    }
+    Ok(())
+}
+
+/// An animation's references (samplers, nodes, accessors), its paths and interpolations
+/// (the `gltf` crate unwraps them), and glTF 2.0 §3.11's rule that an animated node has no
+/// `matrix`.
+fn check_animation(root: &gltf::json::Root, a: usize, animation: &gltf::json::Animation) -> Result<()> {
+    use gltf::json::animation::Property;
+    use gltf::json::validation::Checked;
+    let named = match &animation.name {
+        Some(name) => format!(" (animation '{}')", mrshade_core::text::printable(name)),
+        None => String::new(),
+    };
+    let accessors = root.accessors.len();
+    for (s, sampler) in animation.samplers.iter().enumerate() {
+        for (field, accessor) in [("input", sampler.input.value()), ("output", sampler.output.value())] {
+            if accessor >= accessors {
                 bail!(
-                    "invalid glTF: animations[{a}].channels[{c}].target.node is {node}, but the file has {} nodes",
-                    root.nodes.len()
+                    "invalid glTF: animations[{a}].samplers[{s}].{field} is accessor {accessor}, but the file has {accessors} accessors{named}"
                 );
             }
+        }
+        if sampler.interpolation == Checked::Invalid {
+            bail!(
+                "invalid glTF: animations[{a}].samplers[{s}].interpolation is not LINEAR, STEP or CUBICSPLINE{named}"
+            );
+        }
+    }
+    for (c, channel) in animation.channels.iter().enumerate() {
+        let here = format!("animations[{a}].channels[{c}]");
+        let node = channel.target.node.value();
+        let Some(target) = root.nodes.get(node) else {
+            bail!("invalid glTF: {here}.target.node is {node}, but the file has {} nodes{named}", root.nodes.len());
+        };
+        let sampler = channel.sampler.value();
+        if sampler >= animation.samplers.len() {
+            bail!(
+                "invalid glTF: {here}.sampler is {sampler}, but the animation has {} samplers{named}",
+                animation.samplers.len()
+            );
+        }
+        match channel.target.path {
+            Checked::Invalid => {
+                bail!("invalid glTF: {here}.target.path is not translation, rotation, scale or weights{named}")
+            }
+            Checked::Valid(Property::MorphTargetWeights) => {}
+            Checked::Valid(_) if target.matrix.is_some() => bail!(
+                "invalid glTF: {here} animates nodes[{node}], which has a matrix (an animated node must use translation, rotation and scale){named}"
+            ),
+            Checked::Valid(_) => {}
         }
     }
     Ok(())

@@ -2,9 +2,11 @@
 //! maintained `gltf` crate for parsing and our own checks for everything a renderer must not
 //! trust: the document's references and node graph ([`document`]), buffer lengths, accessor
 //! types, ranges and counts against the memory budget, index bounds, non-finite and
-//! impossibly large numbers, world transforms after composition.
+//! impossibly large numbers, world transforms after composition, animations of node
+//! transforms ([`animations`]).
 
 mod accessors;
+mod animations;
 mod buffers;
 mod document;
 mod extensions;
@@ -47,9 +49,19 @@ pub fn load_gltf_bytes(bytes: &[u8], folder: &AssetSource, limits: &Limits) -> R
     scene.materials.push(Material::default());
 
     let mesh_primitives = meshes::load_meshes(&document, &buffers, default_material, &mut budget, &mut scene)?;
-    nodes::place_nodes(&document, &mesh_primitives, &mut budget, &mut scene)?;
-    if document.animations().len() > 0 || document.skins().len() > 0 {
-        scene.warnings.push("animations and skins are ignored: the scene is rendered in its rest pose".into());
+    let animated = animations::animated_nodes(&document);
+    let scene_node_of = nodes::place_nodes(&document, &mesh_primitives, &animated, &mut budget, &mut scene)?;
+    animations::load_animations(&document, &buffers, &scene_node_of, &mut budget, &mut scene)?;
+    if document.skins().len() > 0 {
+        scene
+            .warnings
+            .push("skins are ignored: skinned meshes are rendered unskinned, where their nodes place them".into());
+    }
+    // The poses at the ends of the animations must be usable (the start is what a still
+    // renders); poses between keys are checked when they are sampled.
+    if let Some((first, last)) = scene.time_range() {
+        scene.pose_at(first)?;
+        scene.pose_at(last)?;
     }
     Ok(scene)
 }

@@ -1,151 +1,177 @@
 //! The node hierarchy: world transforms (TRS or matrix), the real/virtual flag with
-//! inheritance, and what nodes carry (meshes, lights, cameras).
+//! inheritance, what nodes carry (meshes, lights, cameras), and the nodes themselves
+//! ([`crate::Scene::nodes`]) for animation.
 //!
-//! Transforms are checked where they are used, after composition: nested scales that are
-//! finite locally can make a world matrix infinite (1e30 × 1e30), and a zero scale or a zero
-//! quaternion makes it singular. A mesh with a singular transform is flat and invisible, and
-//! is left out with a warning; a camera or a light needs an orientation, so there it is an
-//! error. Geometry must stay within [`MAX_WORLD_EXTENT`] metres of the origin.
+//! World transforms are checked after composition, by the functions that check animated
+//! poses too (`crate::model::pose`). A mesh with a singular transform is flat and invisible,
+//! and is left out with a warning, unless an animation moves its node or an ancestor (it may
+//! scale it up); a camera or a light needs an orientation, so there it is an error.
 
 use super::describe;
 use crate::budget::Budget;
 use crate::images::MAX_RADIANCE;
-use crate::{Camera, Instance, Light, LightKind, Primitive, Scene};
+use crate::model::{check_extent, check_finite, is_invertible, oriented};
+use crate::{Camera, Instance, Light, LightKind, Scene, SceneNode, Trs};
 use anyhow::{Context, Result, bail};
-use glam::{Mat3, Mat4, Vec3};
+use glam::{Mat4, Quat, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use mrshade_core::flags::Realness;
-use mrshade_core::math::{bounding_box, box_corners};
+use mrshade_core::math::bounding_box;
 
 /// The node graph is a forest (checked by `document`); depth is still bounded, for the stack.
 const MAX_DEPTH: usize = 256;
-/// Farthest a surface, camera or light may be from the origin, in metres (the contract's
-/// unit): 1000 km. Past it single precision cannot place a millimetre, and squared
-/// distances in the renderers overflow long before 10¹⁹.
-pub const MAX_WORLD_EXTENT: f32 = 1e6;
 
-/// Walks the default scene (or scene 0) and places instances, lights and cameras.
+/// Walks the default scene (or scene 0) and places instances, lights and cameras; `animated`
+/// says, per glTF node, whether an animation channel moves it. Returns, per glTF node, its
+/// index in `scene.nodes` (`None` for nodes outside the scene).
 pub fn place_nodes(
     document: &gltf::Document,
     mesh_primitives: &[Vec<usize>],
+    animated: &[bool],
     budget: &mut Budget,
     scene: &mut Scene,
-) -> Result<()> {
+) -> Result<Vec<Option<usize>>> {
     let Some(root) = document.default_scene().or_else(|| document.scenes().next()) else {
         bail!("the file has no scene");
     };
+    let mut walk = Walk { mesh_primitives, animated, budget, scene, scene_node_of: vec![None; document.nodes().len()] };
     for node in root.nodes() {
-        visit(&node, Mat4::IDENTITY, Realness::Virtual, 0, mesh_primitives, budget, scene)?;
+        let top = Parent { index: None, world_from_node: Mat4::IDENTITY, realness: Realness::Virtual, moving: false };
+        walk.visit(&node, &top, 0)?;
     }
-    Ok(())
+    Ok(walk.scene_node_of)
 }
 
-fn visit(
-    node: &gltf::Node,
-    parent_from_world: Mat4,
-    parent_realness: Realness,
-    depth: usize,
-    mesh_primitives: &[Vec<usize>],
-    budget: &mut Budget,
-    scene: &mut Scene,
-) -> Result<()> {
-    let name = node.name().map(str::to_string).unwrap_or_else(|| format!("node {}", node.index()));
-    let here = || format!("node {}", describe(Some(node.index()), node.name()));
-    if depth > MAX_DEPTH {
-        bail!("{}: the node hierarchy is deeper than {MAX_DEPTH} levels (a cycle?)", here());
-    }
-    let local = local_transform(node).with_context(here)?;
-    let world_from_node = parent_from_world * local;
-    if !world_from_node.is_finite() {
-        bail!("{}: its world transform is infinite (the scales down the hierarchy multiply past 3·10³⁸)", here());
-    }
-    let realness = node_realness(node).with_context(here)?.unwrap_or(parent_realness);
+/// What a node's children inherit.
+struct Parent {
+    /// Its index in `scene.nodes`.
+    index: Option<usize>,
+    world_from_node: Mat4,
+    realness: Realness,
+    /// Whether an animation moves it or an ancestor.
+    moving: bool,
+}
 
-    if let Some(mesh) = node.mesh() {
-        for &primitive in &mesh_primitives[mesh.index()] {
-            if !is_invertible(world_from_node) {
-                scene.warnings.push(format!("{}: its world transform has a zero scale; not rendered", here()));
-                break;
-            }
-            check_extent(&scene.primitives[primitive], world_from_node).with_context(here)?;
-            budget.charge(here(), 1, (std::mem::size_of::<Instance>() + name.len()) as u64)?;
-            scene.instances.push(Instance {
-                node_name: name.clone(),
-                primitive,
-                world_from_object: world_from_node,
-                realness,
-            });
+struct Walk<'a> {
+    mesh_primitives: &'a [Vec<usize>],
+    animated: &'a [bool],
+    budget: &'a mut Budget,
+    scene: &'a mut Scene,
+    scene_node_of: Vec<Option<usize>>,
+}
+
+impl Walk<'_> {
+    fn visit(&mut self, node: &gltf::Node, parent: &Parent, depth: usize) -> Result<()> {
+        let name = node.name().map(str::to_string).unwrap_or_else(|| format!("node {}", node.index()));
+        let here = || format!("node {}", describe(Some(node.index()), node.name()));
+        if depth > MAX_DEPTH {
+            bail!("{}: the node hierarchy is deeper than {MAX_DEPTH} levels (a cycle?)", here());
         }
-    }
-    let oriented = || -> Result<Mat4> {
-        if !is_invertible(world_from_node) {
-            bail!("its world transform is singular (a zero scale or a degenerate matrix): it has no orientation");
-        }
-        let rigid = rigid(world_from_node);
-        if !rigid.is_finite() || rigid.w_axis.truncate().abs().max_element() > MAX_WORLD_EXTENT {
-            bail!("it lies farther than {MAX_WORLD_EXTENT:e} m from the origin");
-        }
-        Ok(rigid)
-    };
-    if let Some(light) = node.light() {
-        let world_from_light = oriented().with_context(here)?;
-        budget.charge(here(), 1, (std::mem::size_of::<Light>() + name.len()) as u64)?;
-        scene
-            .lights
-            .push(load_light(&light, &name, world_from_light, realness, &mut scene.warnings).with_context(here)?);
-    }
-    if let Some(camera) = node.camera() {
-        match camera.projection() {
-            gltf::camera::Projection::Perspective(p) => {
-                budget.charge(here(), 1, (std::mem::size_of::<Camera>() + name.len()) as u64)?;
-                check_perspective(&p)
-                    .with_context(|| format!("{}: camera {}", here(), describe(Some(camera.index()), camera.name())))?;
-                scene.cameras.push(Camera {
+        let (local, rest) = local_transform(node).with_context(here)?;
+        let world_from_node = parent.world_from_node * local;
+        check_finite(world_from_node).with_context(here)?;
+        let realness = node_realness(node).with_context(here)?.unwrap_or(parent.realness);
+        let moving = parent.moving || self.animated.get(node.index()).copied().unwrap_or(false);
+        let scene = &mut *self.scene;
+        self.budget.charge(here(), 1, (std::mem::size_of::<SceneNode>() + name.len()) as u64)?;
+        let index = scene.nodes.len();
+        scene.nodes.push(SceneNode { name: name.clone(), parent: parent.index, rest, local });
+        self.scene_node_of[node.index()] = Some(index);
+
+        if let Some(mesh) = node.mesh() {
+            for &primitive in &self.mesh_primitives[mesh.index()] {
+                if !moving && !is_invertible(world_from_node) {
+                    scene.warnings.push(format!("{}: its world transform has a zero scale; not rendered", here()));
+                    break;
+                }
+                let p = &scene.primitives[primitive];
+                check_extent(p, bounding_box(&p.positions), world_from_node).with_context(here)?;
+                self.budget.charge(here(), 1, (std::mem::size_of::<Instance>() + name.len() + 8) as u64)?;
+                scene.instances.push(Instance {
                     node_name: name.clone(),
-                    camera_name: camera.name().map(str::to_string),
-                    yfov: p.yfov(),
-                    aspect_ratio: p.aspect_ratio(),
-                    znear: p.znear(),
-                    world_from_camera: oriented().with_context(here)?,
-                })
-            }
-            gltf::camera::Projection::Orthographic(_) => {
-                scene.warnings.push(format!("{}: orthographic cameras are not supported; camera ignored", here()))
+                    primitive,
+                    world_from_object: world_from_node,
+                    realness,
+                });
+                scene.node_of.instances.push(index);
             }
         }
+        if let Some(light) = node.light() {
+            let world_from_light = oriented(world_from_node).with_context(here)?;
+            self.budget.charge(here(), 1, (std::mem::size_of::<Light>() + name.len() + 8) as u64)?;
+            let light =
+                load_light(&light, &name, world_from_light, realness, &mut scene.warnings).with_context(here)?;
+            scene.lights.push(light);
+            scene.node_of.lights.push(index);
+        }
+        if let Some(camera) = node.camera() {
+            match camera.projection() {
+                gltf::camera::Projection::Perspective(p) => {
+                    self.budget.charge(here(), 1, (std::mem::size_of::<Camera>() + name.len() + 8) as u64)?;
+                    check_perspective(&p).with_context(|| {
+                        format!("{}: camera {}", here(), describe(Some(camera.index()), camera.name()))
+                    })?;
+                    scene.cameras.push(Camera {
+                        node_name: name.clone(),
+                        camera_name: camera.name().map(str::to_string),
+                        yfov: p.yfov(),
+                        aspect_ratio: p.aspect_ratio(),
+                        znear: p.znear(),
+                        world_from_camera: oriented(world_from_node).with_context(here)?,
+                    });
+                    scene.node_of.cameras.push(index);
+                }
+                gltf::camera::Projection::Orthographic(_) => {
+                    scene.warnings.push(format!("{}: orthographic cameras are not supported; camera ignored", here()))
+                }
+            }
+        }
+        let inherited = Parent { index: Some(index), world_from_node, realness, moving };
+        for child in node.children() {
+            self.visit(&child, &inherited, depth + 1)?;
+        }
+        Ok(())
     }
-    for child in node.children() {
-        visit(&child, world_from_node, realness, depth + 1, mesh_primitives, budget, scene)?;
-    }
-    Ok(())
 }
 
 /// The node's local transform, as glTF 2.0 §3.5.2 allows it: TRS with a unit quaternion, or
-/// an affine matrix. A quaternion that is not unit length but close is normalised (exporters
-/// round); a zero or non-finite one is an error.
-fn local_transform(node: &gltf::Node) -> Result<Mat4> {
-    let local = match node.transform() {
+/// an affine matrix; and as TRS (a matrix decomposed, its shear lost). A quaternion that is
+/// not unit length but close is normalised (exporters round); a zero or non-finite one is an
+/// error.
+fn local_transform(node: &gltf::Node) -> Result<(Mat4, Trs)> {
+    let (local, trs) = match node.transform() {
         gltf::scene::Transform::Matrix { matrix } => {
             let m = Mat4::from_cols_array_2d(&matrix);
             if m.row(3) != glam::Vec4::W {
                 bail!("matrix is not affine: its last row is {} (glTF needs 0, 0, 0, 1)", m.row(3));
             }
-            m
+            (m, decompose(m))
         }
         gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
-            let q = glam::Quat::from_array(rotation);
+            let q = Quat::from_array(rotation);
             let length = q.length();
             if !(length.is_finite() && (length - 1.0).abs() < 0.1) {
                 bail!("rotation {rotation:?} is not a unit quaternion");
             }
-            let (t, s) = (Vec3::from(translation), Vec3::from(scale));
-            Mat4::from_scale_rotation_translation(s, q / length, t)
+            let trs = Trs { translation: Vec3::from(translation), rotation: q / length, scale: Vec3::from(scale) };
+            (trs.matrix(), trs)
         }
     };
     if !local.is_finite() {
         bail!("transform holds NaN or infinite values");
     }
-    Ok(local)
+    Ok((local, trs))
+}
+
+/// `m` as TRS, finite whatever `m` is (a singular matrix has no rotation: identity then).
+fn decompose(m: Mat4) -> Trs {
+    let (scale, rotation, translation) = m.to_scale_rotation_translation();
+    let rotation = if rotation.is_finite() && rotation.length() > 0.5 { rotation.normalize() } else { Quat::IDENTITY };
+    Trs {
+        translation: if translation.is_finite() { translation } else { Vec3::ZERO },
+        rotation,
+        scale: if scale.is_finite() { scale } else { Vec3::ZERO },
+    }
 }
 
 /// A perspective projection that sees something: 0 < yfov < π, 0 < znear < zfar, a positive
@@ -167,29 +193,6 @@ fn check_perspective(p: &gltf::camera::Perspective) -> Result<()> {
         && !(aspect > 0.0 && aspect.is_finite())
     {
         bail!("aspectRatio {aspect} must be positive");
-    }
-    Ok(())
-}
-
-/// Whether the linear part of `m` can be inverted: not flattened by a zero scale.
-fn is_invertible(m: Mat4) -> bool {
-    let linear = Mat3::from_mat4(m);
-    let scale = linear.x_axis.length() * linear.y_axis.length() * linear.z_axis.length();
-    let det = linear.determinant();
-    det.is_finite() && scale.is_finite() && det.abs() > 1e-9 * scale && scale > 0.0
-}
-
-/// The primitive's world-space box must be finite and within [`MAX_WORLD_EXTENT`].
-fn check_extent(primitive: &Primitive, world_from_object: Mat4) -> Result<()> {
-    // Corner by corner: a NaN corner would vanish in a min/max fold.
-    for c in box_corners(bounding_box(&primitive.positions)) {
-        let w = world_from_object.transform_point3(c);
-        if !(w.is_finite() && w.abs().max_element() <= MAX_WORLD_EXTENT) {
-            bail!(
-                "{}: its geometry reaches beyond {MAX_WORLD_EXTENT:e} m from the origin (mrshade works in metres; check the scales)",
-                primitive.name
-            );
-        }
     }
     Ok(())
 }
@@ -240,10 +243,4 @@ fn load_light(
         }
     };
     Ok(Light { name, kind, intensity: color * light.intensity(), world_from_light, realness })
-}
-
-/// The rotation and translation of `m` (scale removed): cameras and lights are rigid.
-fn rigid(m: Mat4) -> Mat4 {
-    let (_, rotation, translation) = m.to_scale_rotation_translation();
-    Mat4::from_rotation_translation(rotation.normalize(), translation)
 }

@@ -1,9 +1,16 @@
 //! The scene model: flattened, world-placed geometry with materials, lights and cameras,
-//! each marked real or virtual. Built by `crate::gltf`, consumed by the renderers.
+//! each marked real or virtual, and the node hierarchy and animations that move them over
+//! time ([`Scene::pose_at`]). Built by `crate::gltf`, consumed by the renderers.
 
+mod animation;
 mod material;
+mod pose;
 
+pub(crate) use animation::unit_quaternion;
+pub use animation::{Animation, Channel, Interpolation, TargetPath};
 pub use material::{AlphaMode, Material, Texture, TextureRef};
+pub use pose::{MAX_WORLD_EXTENT, NodeLinks, SceneNode, ScenePose, Trs};
+pub(crate) use pose::{check_extent, check_finite, is_invertible, oriented};
 
 use glam::{Mat4, Vec2, Vec3};
 use mrshade_core::flags::Realness;
@@ -32,7 +39,9 @@ pub struct Instance {
     pub node_name: String,
     /// Index into [`Scene::primitives`].
     pub primitive: usize,
-    /// Object → world transform accumulated down the node hierarchy.
+    /// Object → world transform accumulated down the node hierarchy, in the rest pose
+    /// ([`Scene::pose_at`] gives it at a time). Invertible, except for an animated node
+    /// whose rest scale is zero (kept: its animation may scale it up).
     pub world_from_object: Mat4,
     /// Real proxy or inserted virtual object.
     pub realness: Realness,
@@ -64,7 +73,8 @@ pub struct Light {
     pub kind: LightKind,
     /// `intensity × color`, linear RGB.
     pub intensity: Vec3,
-    /// Light → world; the light sits at the origin and shines down its −Z.
+    /// Light → world, rigid, in the rest pose; the light sits at the origin and shines down
+    /// its −Z.
     pub world_from_light: Mat4,
     /// A real lamp (already in the photo) or an inserted virtual one.
     pub realness: Realness,
@@ -95,7 +105,7 @@ pub struct Camera {
     pub aspect_ratio: Option<f32>,
     /// Near plane distance (metres).
     pub znear: f32,
-    /// Camera → world, rigid (scale removed); the camera looks down its −Z.
+    /// Camera → world, rigid (scale removed), in the rest pose; the camera looks down its −Z.
     pub world_from_camera: Mat4,
 }
 
@@ -121,6 +131,13 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Perspective cameras, in scene traversal order.
     pub cameras: Vec<Camera>,
+    /// Every node of the loaded glTF scene, parents before children: the hierarchy that
+    /// [`Scene::pose_at`] recomposes.
+    pub nodes: Vec<SceneNode>,
+    /// The node of each instance, light and camera.
+    pub node_of: NodeLinks,
+    /// Animations of node transforms; all play at once ([`Scene::pose_at`]).
+    pub animations: Vec<Animation>,
     /// What the loader could not honour and skipped (unsupported extensions, …).
     pub warnings: Vec<String>,
 }

@@ -1,4 +1,5 @@
-//! `mrshade bench`: GPU milliseconds per pass and per frame from timestamp queries.
+//! `mrshade bench`: GPU milliseconds per pass and per frame from timestamp queries, for a
+//! still camera or a sequence played frame by frame (new photo, pose and transforms each).
 
 use super::{Log, load_session, open_gpu};
 use crate::args::BenchArgs;
@@ -6,7 +7,8 @@ use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use mrshade_gpu::GpuOptions;
 use mrshade_gpu::timing::{flatten, profiler};
-use mrshade_render::Renderer;
+use mrshade_render::footage::FrameData;
+use mrshade_render::{FrameInputs, Renderer};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -54,6 +56,14 @@ struct Report {
     gaps_before: BTreeMap<String, Stats>,
     /// Pass labels in frame order.
     pass_order: Vec<String>,
+    /// Frames of the sequence played (0: a still camera).
+    sequence_frames: u32,
+    /// Bytes of photo uploaded per frame (a texture write before the frame's passes).
+    upload_bytes: u64,
+    /// CPU time per frame to upload the inputs and record and submit the commands.
+    cpu_submit: Stats,
+    /// Frames per second end to end (CPU, upload, GPU, waiting for each frame), warm-up included.
+    wall_fps: f64,
 }
 
 /// Runs the benchmark.
@@ -75,24 +85,61 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     }
     let mut profiler = profiler(&ctx, true)?;
     let (w, h) = renderer.output_size();
-    log.info(format!("bench {w}×{h}, {} warm-up + {} measured frames", args.warmup, args.frames));
+    // A sequence plays: a new photo, camera pose and animated transforms every frame (loaded
+    // and resized before timing, looping over the sequence's frames).
+    let footage: Vec<FrameData> = match &session.sequence {
+        Some(seq) => {
+            log.info(format!("loading the sequence's {} frames", seq.frames.len()));
+            (0..seq.frames.len()).map(|k| FrameData::load(&session, k)).collect::<Result<_>>()?
+        }
+        None => Vec::new(),
+    };
+    let still = FrameInputs::camera(renderer.session_camera());
+    log.info(format!(
+        "bench {w}×{h}, {} warm-up + {} measured frames{}",
+        args.warmup,
+        args.frames,
+        if footage.is_empty() { String::new() } else { format!(", playing {} sequence frames", footage.len()) }
+    ));
 
     let total = (args.warmup + args.frames) as u64;
     let bar = if log.shows_progress() { ProgressBar::new(total) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}").context("progress style")?);
     let mut frames: Vec<Vec<(String, f64, f64)>> = Vec::new();
+    let mut submit_ms = Vec::new();
+    let mut previous = None;
+    let mut processed = 0;
+    let started = std::time::Instant::now();
     for i in 0..total {
-        renderer.render(&ctx, &mut profiler)?;
+        let inputs = if footage.is_empty() { still } else { footage[i as usize % footage.len()].inputs() };
+        let submit = std::time::Instant::now();
+        let submitted = renderer.render(&ctx, &mut profiler, &inputs)?;
+        if i >= args.warmup as u64 {
+            submit_ms.push(submit.elapsed().as_secs_f64() * 1e3);
+        }
         profiler.end_frame().map_err(|e| anyhow::anyhow!("profiler: {e}"))?;
-        ctx.wait_idle()?;
+        // One frame in flight, as a live renderer runs: the next frame's inputs are uploaded
+        // and its commands recorded while the GPU draws this one.
+        if let Some(before) = previous.replace(submitted) {
+            ctx.wait_for(before)?;
+        }
         while let Some(results) = profiler.process_finished_frame(ctx.queue.get_timestamp_period()) {
-            if i >= args.warmup as u64 {
+            if processed >= args.warmup {
                 frames.push(flatten(&results));
             }
+            processed += 1;
         }
         bar.inc(1);
     }
+    ctx.wait_idle()?;
+    while let Some(results) = profiler.process_finished_frame(ctx.queue.get_timestamp_period()) {
+        if processed >= args.warmup {
+            frames.push(flatten(&results));
+        }
+        processed += 1;
+    }
     bar.finish_and_clear();
+    let wall_fps = total as f64 / started.elapsed().as_secs_f64();
     if frames.is_empty() {
         bail!("no timestamp results came back from the GPU");
     }
@@ -143,6 +190,10 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         passes: per_pass.iter().map(|(k, v)| (k.clone(), Stats::of(v))).collect(),
         gaps_before: per_gap.iter().map(|(k, v)| (k.clone(), Stats::of(v))).collect(),
         pass_order,
+        sequence_frames: footage.len() as u32,
+        upload_bytes: if footage.is_empty() { 0 } else { renderer.photo_upload_bytes() },
+        cpu_submit: Stats::of(&submit_ms),
+        wall_fps,
     };
     print_report(&report);
     if let Some(path) = &args.json {
@@ -162,4 +213,14 @@ fn print_report(r: &Report) {
         println!("{label:<12} {:>10.3} {:>10.3} {gap:>10.3}", s.mean_ms, s.p95_ms);
     }
     println!("{:<12} {:>10.3} {:>10.3}", "frame", r.frame.mean_ms, r.frame.p95_ms);
+    if r.sequence_frames > 0 {
+        println!(
+            "played {} sequence frames: {:.1} MiB photo upload per frame, CPU upload + submit {:.3} ms, {:.0} frames/s \
+             end to end",
+            r.sequence_frames,
+            r.upload_bytes as f64 / (1 << 20) as f64,
+            r.cpu_submit.mean_ms,
+            r.wall_fps
+        );
+    }
 }

@@ -1,6 +1,11 @@
 //! `mrshade eval`: render benchmark datasets with each method, score against the answers the
 //! way CALIBRATION.md does (FLIP heat-map mean over the frame and the changed region, PSNR),
-//! time, and report (Markdown, JSON, HTML with images).
+//! time, and report (Markdown, JSON, HTML with images). Sequence datasets (posed image
+//! sequences, one answer per frame) are played as footage and scored frame by frame
+//! (`eval_sequence.rs`).
+
+#[path = "eval_sequence.rs"]
+mod sequence;
 
 use super::compare::load as load_rgb8;
 use super::reference::render_reference;
@@ -23,27 +28,33 @@ use std::time::Instant;
 pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     let mut methods: Vec<&str> = Vec::new();
     for m in &args.method {
-        if !methods.contains(&m.as_str()) {
-            methods.push(m);
-        }
-    }
-    // Check every dataset before hours of rendering.
-    for dir in &args.datasets {
-        for file in ["session.toml", "background.png", "ground_truth.png"] {
-            if !dir.join(file).is_file() {
-                bail!(
-                    "dataset {}: no {file} (a dataset folder holds session.toml, background.png and ground_truth.png)",
-                    dir.display()
-                );
+        // `all`: every real-time method of the renderer's list, then the reference.
+        let named: Vec<&str> = match m.as_str() {
+            "all" => Method::ALL.iter().map(|m| m.name()).chain(["reference"]).collect(),
+            m => vec![m],
+        };
+        for m in named {
+            if !methods.contains(&m) {
+                methods.push(m);
             }
         }
     }
+    // Check every dataset before hours of rendering.
+    let mut plans = Vec::with_capacity(args.datasets.len());
+    for dir in &args.datasets {
+        plans.push(check(dir, &methods, args)?);
+    }
     let ctx = if methods.iter().any(|m| *m != "reference") { Some(open_gpu(gpu, log)?) } else { None };
-    let mut rows = Vec::new();
-    for (i, dir) in args.datasets.iter().enumerate() {
+    let (mut rows, mut sequences) = (Vec::new(), Vec::new());
+    for (i, (dir, plan)) in args.datasets.iter().zip(&plans).enumerate() {
         let scene = dir.file_name().map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into_owned());
         // Folder names reach the terminal and the report.
         let scene = mrshade_core::text::printable(&scene).into_owned();
+        if let Some(plan) = plan {
+            log.info(format!("[{}/{}] {scene}: {}", i + 1, args.datasets.len(), methods.join(", ")));
+            sequences.push(sequence::eval_sequence(dir, &scene, plan, &methods, args, ctx.as_ref(), log)?);
+            continue;
+        }
         let answer = load_rgb8(&dir.join("ground_truth.png"), args.max_pixels)?;
         let photo = load_rgb8(&dir.join("background.png"), args.max_pixels)?;
         if (photo.width, photo.height) != (answer.width, answer.height) {
@@ -55,7 +66,7 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         }
         for method in &methods {
             log.info(format!("[{}/{}] {scene}: {method}", i + 1, args.datasets.len()));
-            let session = load(dir, method, args, &answer)?;
+            let session = load(dir, method, args, answer.width, answer.height)?;
             let (image, seconds, device) = render(&session, method, ctx.as_ref(), log)?;
             let result = to_rgb8(&image);
             let comparison = compare(&answer, &result).map_err(anyhow::Error::msg)?;
@@ -86,7 +97,7 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
             rows.push(row);
         }
     }
-    let report = Report { command: command_line(), version: env!("CARGO_PKG_VERSION").into(), rows };
+    let report = Report { command: command_line(), version: env!("CARGO_PKG_VERSION").into(), rows, sequences };
     println!("{}", report.markdown());
     if let Some(out) = &args.report {
         write(&out.join("report.md"), report.markdown().as_bytes())?;
@@ -97,15 +108,36 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     Ok(())
 }
 
-fn load(dir: &Path, method: &str, args: &EvalArgs, answer: &Rgb8) -> Result<Session> {
+/// Checks a dataset's files: a still's photo and answer, or a sequence's frames (its plan).
+fn check(dir: &Path, methods: &[&str], args: &EvalArgs) -> Result<Option<sequence::Plan>> {
+    let layout = "a dataset folder holds session.toml, background.png and ground_truth.png, or session.toml with \
+                  [sequence] transforms and ground_truth/NAME.png per frame";
+    if !dir.join("session.toml").is_file() {
+        bail!("dataset {}: no session.toml ({layout})", dir.display());
+    }
+    if sequence::declares_sequence(dir, args)
+        && let Some(plan) = sequence::check(dir, methods, args)?
+    {
+        return Ok(Some(plan));
+    }
+    for file in ["background.png", "ground_truth.png"] {
+        if !dir.join(file).is_file() {
+            bail!("dataset {}: no {file} ({layout})", dir.display());
+        }
+    }
+    Ok(None)
+}
+
+/// The session of `dir` for `method`, rendered at `width × height` (the answer's size).
+fn load(dir: &Path, method: &str, args: &EvalArgs, width: u32, height: u32) -> Result<Session> {
     let mut set = args.set.clone();
     set.extend(args.spp.map(|n| format!("reference.spp={n}")));
     let real_time =
         (method != "reference").then(|| Method::from_name(method)).transpose().map_err(anyhow::Error::msg)?;
     // Rendered at the answer's size, whatever the session says.
     let overrides = SessionOverrides {
-        width: Some(answer.width),
-        height: Some(answer.height),
+        width: Some(width),
+        height: Some(height),
         method: real_time,
         set,
         stretch_photo: false,

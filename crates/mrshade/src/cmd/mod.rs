@@ -6,6 +6,7 @@ mod eval;
 mod info;
 mod reference;
 mod render;
+mod sequence;
 
 use crate::args::{Cli, Command, SessionArgs};
 use anyhow::Result;

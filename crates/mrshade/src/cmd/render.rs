@@ -3,7 +3,7 @@
 use super::{Log, load_session, open_gpu};
 use crate::args::{DemoArgs, RenderArgs};
 use crate::{demo_assets, output};
-use anyhow::Result;
+use anyhow::{Context, Result, bail};
 use mrshade_gpu::{GpuContext, GpuOptions};
 use mrshade_render::{Composite, Renderer};
 use mrshade_scene::{Session, SessionOverrides};
@@ -12,9 +12,24 @@ use std::time::Instant;
 
 /// Renders a session file.
 pub fn render(args: &RenderArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
-    output::check_extension(&args.output)?;
     let session = load_session(&args.session, log)?;
-    render_session(&session, &args.output, args.aov_dir.as_deref(), gpu, log)
+    if session.sequence.is_some() {
+        let ctx = open_gpu(gpu, log)?;
+        return super::sequence::render_sequence(&session, args, &ctx, log);
+    }
+    for (flag, given) in
+        [("--frame", args.frame.is_some()), ("--frames", args.frames.is_some()), ("--video", args.video.is_some())]
+    {
+        if given {
+            bail!(
+                "{flag}: {} is a still session (one photo); {flag} is for sequence sessions ([sequence] in the session)",
+                session.origin
+            );
+        }
+    }
+    let out = args.output.as_deref().context("-o OUT is required")?;
+    output::check_extension(out)?;
+    render_session(&session, out, args.aov_dir.as_deref(), gpu, log)
 }
 
 /// Renders the embedded demo session.

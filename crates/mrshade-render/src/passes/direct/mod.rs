@@ -3,8 +3,8 @@
 //! the probe, emission. Writes `L_rv` and `L_r` from the same evaluation in one dispatch.
 //! Inputs: G-buffer, lights, shadow maps, probe. Outputs: `Differential { rv, r }`.
 
+use crate::methods::IndirectLight;
 use crate::passes::gbuffer::GBuffer;
-use crate::passes::indirect::IndirectBuffers;
 use crate::passes::shadow::ShadowPass;
 use crate::scene_gpu::GpuScene;
 use bytemuck::{Pod, Zeroable};
@@ -68,7 +68,7 @@ impl DirectPass {
         gbuffer: &GBuffer,
         scene: &GpuScene,
         shadows: &ShadowPass,
-        indirect: Option<&IndirectBuffers>,
+        indirect: Option<&IndirectLight>,
         radiance: &Differential<Target>,
     ) -> Self {
         let device = &ctx.device;
@@ -81,7 +81,7 @@ impl DirectPass {
         let indirect = match indirect {
             Some(i) => i,
             None => {
-                placeholder = IndirectBuffers::new(device, "direct/no_indirect", (1, 1));
+                placeholder = IndirectLight::new(device, "direct/no_indirect", (1, 1));
                 &placeholder
             }
         };

@@ -55,6 +55,13 @@ impl ShadowPass {
         Self { views, maps }
     }
 
+    /// Moves the layers' projections to `layers` (moving lights); the next frame draws them.
+    pub fn set_layers(&mut self, queue: &wgpu::Queue, layers: &[ShadowLayer]) {
+        for (view, layer) in self.views.iter_mut().zip(layers) {
+            view.set_clip_from_world(queue, layer.clip_from_world);
+        }
+    }
+
     /// Rasterises every layer's casters.
     pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         if !self.views.is_empty() {

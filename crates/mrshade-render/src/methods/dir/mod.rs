@@ -1,0 +1,157 @@
+//! Differential instant radiosity, the `dir` method (Knecht §2.7–§2.10): its passes in the
+//! order of Knecht §1.4 — RSMs → VPLs → ISMs → interleaved indirect shading → temporal
+//! smoothing and merge — built together because they share the VPL and ISM buffers. It hands
+//! on the merged [`IndirectLight`]; direct light and the composite follow in `crate::frame`.
+//! CPU-side inputs that change only with the scene: the surface point clouds of the
+//! imperfect shadow maps (`points`) and the importance pyramid of the probe
+//! (`probe_pyramid`).
+
+mod aovs;
+pub mod filter;
+pub mod indirect;
+pub mod ism;
+mod limits;
+mod points;
+mod probe_pyramid;
+pub mod rsm;
+pub mod vpl;
+
+pub use aovs::IsmDepths;
+pub(crate) use limits::{estimate, fit};
+pub use points::{GpuPoint, PointCloud};
+pub use probe_pyramid::ProbePyramid;
+
+use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs};
+use crate::outputs::Aov;
+use crate::raster::Rasterizer;
+use anyhow::Result;
+use filter::{FilterPass, History};
+use indirect::IndirectPass;
+use ism::{IsmPass, IsmResources};
+use mrshade_gpu::GpuContext;
+use mrshade_gpu::timing::Recorder;
+use rsm::RsmPass;
+use vpl::VplPass;
+
+/// Every pass of differential instant radiosity and the frame counter they share.
+pub struct DirMethod {
+    /// Reflective shadow maps.
+    pub rsm: RsmPass,
+    /// Point clouds and ISM atlases.
+    pub ism_resources: IsmResources,
+    /// VPL creation.
+    pub vpl: VplPass,
+    /// ISM splatting.
+    pub ism: IsmPass,
+    /// Interleaved shading output.
+    pub interleaved: IndirectLight,
+    /// Interleaved shading.
+    pub indirect: IndirectPass,
+    /// Temporal smoothing and merge.
+    pub filter: FilterPass,
+    /// Frame counter: seeds the VPLs' sampling and picks the double buffers' parity.
+    frame: u32,
+    /// Frames rendered since the history was last forgotten.
+    rendered: u32,
+    /// Frames since anything in the scene moved.
+    still_frames: u32,
+}
+
+/// Builds every pass of the method (the registry's `build`).
+pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
+    Box::new(DirMethod::new(inputs))
+}
+
+impl DirMethod {
+    /// Builds every pass for the session of `inputs`.
+    pub fn new(inputs: &MethodInputs) -> Self {
+        let MethodInputs { ctx, session, scene, rasterizer, frame_uniforms, gbuffer, radiance, internal_size } =
+            *inputs;
+        let settings = &session.settings.dir;
+        let (center, radius) = match session.scene.bounds() {
+            Some((lo, hi)) => ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3)),
+            None => (glam::Vec3::ZERO, 1.0),
+        };
+        let rsm = RsmPass::new(
+            ctx,
+            rasterizer,
+            scene,
+            &scene.shadow_layers,
+            settings.rsm_resolution,
+            session.settings.shadows.resolution,
+        );
+        let ism_resources = IsmResources::new(ctx, &session.scene, settings, center, radius);
+        let vpl = VplPass::new(ctx, session, settings, scene, &rsm, &ism_resources, center, radius);
+        let ism = IsmPass::new(ctx, &ism_resources, &scene.geometry, &vpl.vpls);
+        let interleaved = IndirectLight::new(&ctx.device, "indirect/interleaved", internal_size);
+        let indirect = IndirectPass::new(
+            ctx,
+            frame_uniforms,
+            gbuffer,
+            &scene.materials.buffer,
+            &vpl.vpls,
+            &ism_resources,
+            settings,
+            radius,
+            radiance,
+            &interleaved,
+        );
+        let filter = FilterPass::new(ctx, frame_uniforms, settings, session.exposure, gbuffer, &interleaved);
+        Self { rsm, ism_resources, vpl, ism, interleaved, indirect, filter, frame: 0, rendered: 0, still_frames: 0 }
+    }
+
+    /// Frames rendered so far.
+    pub fn frame(&self) -> u32 {
+        self.frame
+    }
+}
+
+impl LightTransport for DirMethod {
+    fn prepare(&mut self, queue: &wgpu::Queue, change: &FrameChange) {
+        if let Some(layers) = change.moved_light_layers {
+            self.rsm.set_layers(queue, layers);
+        }
+        self.vpl.prepare(queue, self.frame, change.geometry);
+        self.ism_resources.prepare(queue, change.geometry.virtual_box());
+        // Light in the world changes when geometry or a light moves; a moving camera only
+        // reprojects the history (the temporal step's disocclusion tests handle what it
+        // newly sees).
+        let light_changed = change.geometry_moved || change.moved_light_layers.is_some();
+        self.still_frames = if light_changed || self.rendered == 0 { 0 } else { self.still_frames + 1 };
+        let history = History {
+            exists: self.rendered > 0,
+            moved: light_changed,
+            camera_moved: change.camera_moved,
+            still_frames: self.still_frames,
+        };
+        self.filter.prepare(queue, history);
+    }
+
+    fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        let parity = (self.frame % 2) as usize;
+        self.rsm.record(rec, rasterizer);
+        self.vpl.record(rec, parity);
+        self.ism.record(rec, &self.ism_resources, parity);
+        self.indirect.record(rec, parity);
+        self.filter.record(rec, parity);
+        self.frame += 1;
+        self.rendered += 1;
+    }
+
+    fn indirect(&self) -> Option<&IndirectLight> {
+        Some(&self.filter.merged)
+    }
+
+    fn read_aovs(&self, ctx: &GpuContext, view: &AovView) -> Result<Vec<Aov>> {
+        self.aovs(ctx, view)
+    }
+
+    fn seek(&mut self, frame: u32) {
+        self.frame = frame;
+        self.rendered = 0;
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}

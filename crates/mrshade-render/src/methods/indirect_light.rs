@@ -1,0 +1,66 @@
+//! The contract between a light-transport method and the stages after it: the indirect
+//! light that direct lighting adds and shadows the probe's light with. Any method that
+//! computes indirect light fills one; the `dir` method's interleaved, history and merged
+//! buffers have the same layout.
+
+use mrshade_core::Differential;
+use mrshade_gpu::{Target, bind};
+
+/// Format of the indirect buffers.
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// What a light-transport method hands to direct lighting (the neutral contract between
+/// stages, not a method's private buffer): indirect light of both solutions and the
+/// environment visibility sums, per color channel (rgb: Σw_c·V_rv, Σw_c·V_r and Σw_c, with w_c = a VPL's power in channel c · cos θ).
+pub struct IndirectLight {
+    /// Indirect `L_rv` and `L_r`.
+    pub light: Differential<Target>,
+    /// Environment visibility sums Σw_c·V of both solutions.
+    pub env: Differential<Target>,
+    /// Environment weight sums Σw_c, the ratios' denominators.
+    pub env_weight: Target,
+}
+
+/// Number of targets in [`IndirectLight`].
+pub const TARGETS: usize = 5;
+
+impl IndirectLight {
+    /// `FORMAT` targets named `<label>/rv`, `/r`, `/env_rv`, `/env_r`, `/env_weight`.
+    pub fn new(device: &wgpu::Device, label: &str, size: (u32, u32)) -> Self {
+        let usage =
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
+        let t = |name: &str| Target::new_2d(device, &format!("{label}/{name}"), size, FORMAT, usage);
+        Self {
+            light: Differential { rv: t("rv"), r: t("r") },
+            env: Differential { rv: t("env_rv"), r: t("env_r") },
+            env_weight: t("env_weight"),
+        }
+    }
+
+    /// The targets in binding order (rv, r, env_rv, env_r, env_weight).
+    pub fn all(&self) -> [&Target; TARGETS] {
+        [&self.light.rv, &self.light.r, &self.env.rv, &self.env.r, &self.env_weight]
+    }
+
+    /// Layout entries of the targets as sampled textures from binding `first`.
+    pub fn sampled_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; TARGETS] {
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let t = wgpu::TextureSampleType::Float { filterable: false };
+        std::array::from_fn(|i| bind::texture(first + i as u32, cs, t, wgpu::TextureViewDimension::D2))
+    }
+
+    /// Layout entries of the targets as storage textures from binding 0.
+    pub fn storage_entries() -> [wgpu::BindGroupLayoutEntry; TARGETS] {
+        std::array::from_fn(|i| bind::storage_texture(i as u32, FORMAT))
+    }
+
+    /// The bind group resources of the targets.
+    pub fn resources(&self) -> [wgpu::BindingResource<'_>; TARGETS] {
+        self.all().map(|t| wgpu::BindingResource::TextureView(&t.view))
+    }
+
+    /// Size of the targets.
+    pub fn size(&self) -> (u32, u32) {
+        self.env_weight.size()
+    }
+}

@@ -1,0 +1,132 @@
+//! The seam between the frame and its light-transport methods (Knecht §1.4, step 3: "compute
+//! `L_rv` and `L_r` from the same paths").
+//!
+//! A method is one folder here and one entry in [`REGISTRY`]: it is built from the scene and
+//! its own typed settings ([`MethodInputs`]), fits itself to the device's limits before
+//! anything is allocated ([`Entry::fit`], [`Entry::estimate`]), is prepared per frame from the
+//! frame's inputs ([`LightTransport::prepare`]), records its passes
+//! ([`LightTransport::record`]), hands on what the stages after it read ([`IndirectLight`])
+//! and reports its AOVs. The frame holds the chosen method as one `Box<dyn LightTransport>`.
+//!
+//! Adding a method: a variant of `mrshade_core::settings::Method` (its name, description and
+//! default still frames live there), a folder here, and one [`Entry`] below. The CLI's
+//! choices, `eval`, the invariant and golden tests and `./dev benchmark` loop over
+//! `Method::ALL`.
+
+pub mod dir;
+mod direct;
+mod indirect_light;
+
+pub use indirect_light::{FORMAT as INDIRECT_FORMAT, IndirectLight, TARGETS as INDIRECT_TARGETS};
+
+use crate::limits::Fit;
+use crate::outputs::{Aov, Composite};
+use crate::passes::gbuffer::GBuffer;
+use crate::raster::Rasterizer;
+use crate::scene_gpu::{Geometry, GpuScene, ShadowLayer};
+use anyhow::Result;
+use mrshade_core::Differential;
+use mrshade_core::settings::{Method, RenderSettings};
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{GpuContext, Target};
+use mrshade_scene::Session;
+
+/// What every method is built from: the session and the resources the frame shares.
+#[derive(Clone, Copy)]
+pub struct MethodInputs<'a> {
+    /// The GPU.
+    pub ctx: &'a GpuContext,
+    /// The session (scene, settings fitted to the device).
+    pub session: &'a Session,
+    /// The scene on the GPU.
+    pub scene: &'a GpuScene,
+    /// The compute rasteriser the frame's views share.
+    pub rasterizer: &'a Rasterizer,
+    /// The frame's uniform buffer (`Frame` in shaders/lib/frame.wgsl).
+    pub frame_uniforms: &'a wgpu::Buffer,
+    /// The G-buffer of the frame's camera.
+    pub gbuffer: &'a GBuffer,
+    /// Where the frame's shading writes `L_rv` and `L_r`.
+    pub radiance: &'a Differential<Target>,
+    /// Internal shading size.
+    pub internal_size: (u32, u32),
+}
+
+/// What changed since the previous frame, for a method's per-frame preparation.
+pub struct FrameChange<'a> {
+    /// The scene's geometry with this frame's transforms uploaded.
+    pub geometry: &'a Geometry,
+    /// Whether an instance moved.
+    pub geometry_moved: bool,
+    /// The lights' shadow layers when a light moved (their RSMs must follow); `None` otherwise.
+    pub moved_light_layers: Option<&'a [ShadowLayer]>,
+    /// Whether the camera moved (history is reprojected; light in the world did not change).
+    pub camera_moved: bool,
+}
+
+/// What a method's AOVs are drawn with.
+pub struct AovView<'a> {
+    /// The frame's composite.
+    pub composite: &'a Composite,
+    /// The camera's `clip_from_world` (VPLs are drawn over the image).
+    pub clip_from_world: glam::Mat4,
+    /// Linear camera value per unit radiance.
+    pub exposure: f32,
+    /// Internal shading size.
+    pub internal_size: (u32, u32),
+}
+
+/// One light-transport method behind the seam.
+pub trait LightTransport {
+    /// Uploads this frame's per-frame data; called before [`LightTransport::record`].
+    fn prepare(&mut self, queue: &wgpu::Queue, change: &FrameChange);
+    /// Records the method's passes into the frame (after the G-buffer, before direct light).
+    fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer);
+    /// The indirect light direct lighting adds, if the method computes any.
+    fn indirect(&self) -> Option<&IndirectLight>;
+    /// The method's own AOVs, read back after a frame.
+    fn read_aovs(&self, ctx: &GpuContext, view: &AovView) -> Result<Vec<Aov>>;
+    /// Forgets the temporal history and numbers the next frame `frame` (its sampling seed):
+    /// a range of a sequence rendered on its own then draws the same samples per frame as
+    /// the whole run.
+    fn seek(&mut self, frame: u32);
+    /// The concrete method, for tests and AOVs that read its private buffers.
+    fn as_any(&self) -> &dyn std::any::Any;
+}
+
+/// A method's entry in the registry.
+pub struct Entry {
+    /// Which method.
+    pub method: Method,
+    /// Builds its passes.
+    pub build: fn(&MethodInputs) -> Box<dyn LightTransport>,
+    /// Shrinks its settings to the device (with warnings), or says why it cannot render there.
+    pub fit: fn(&mut RenderSettings, &mut Fit) -> Result<()>,
+    /// Its GPU memory beyond the frame's shared targets, item by item, for `internal_pixels`
+    /// shading samples and `shadow_layers` light layers.
+    pub estimate: fn(&RenderSettings, u64, u64) -> Vec<(&'static str, u64)>,
+}
+
+/// Every method the renderer has; the only place a method is matched to its code.
+pub const REGISTRY: &[Entry] = &[
+    Entry { method: Method::Dir, build: dir::build, fit: dir::fit, estimate: dir::estimate },
+    Entry { method: Method::Direct, build: direct::build, fit: direct::fit, estimate: direct::estimate },
+];
+
+/// The registry entry of `method`.
+pub fn entry(method: Method) -> &'static Entry {
+    REGISTRY.iter().find(|e| e.method == method).expect("every Method has a REGISTRY entry (tested)")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_method_has_one_entry() {
+        for m in Method::ALL {
+            assert_eq!(REGISTRY.iter().filter(|e| e.method == *m).count(), 1, "{}", m.name());
+        }
+        assert_eq!(REGISTRY.len(), Method::ALL.len());
+    }
+}
