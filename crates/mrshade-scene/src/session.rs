@@ -24,7 +24,7 @@
 //! [sequence]                    # optional: a posed image sequence (see crate::sequence)
 //! transforms = "transforms.json" # nerfstudio / instant-ngp poses and photos, instead of `background`
 //! fps = 30                      # frames per second (default 30): frame k is at time k / fps
-//! samples = 4                   # jittered frames averaged per footage frame (anti-aliasing; 1 = real time)
+//! samples = 32                  # jittered renderer frames averaged per footage frame (1 = real time)
 //! # frames = 48                 # instead of `transforms`, with `background`: 48 frames of that photo
 //! ```
 //! Parsing is strict: an unknown key, a wrong type, a missing file, or a photo whose aspect

@@ -24,6 +24,8 @@ fn eval_scores_every_frame_of_a_sequence_and_its_stills() {
         "--spp",
         "1",
         "--stills",
+        "--set",
+        "sequence.samples=2",
         "--report",
         report.to_str().unwrap(),
     ]);
@@ -73,7 +75,7 @@ fn eval_scores_every_frame_of_a_sequence_and_its_stills() {
 
 #[test]
 fn eval_plays_a_temporal_method_through_the_sequence() {
-    let o = mrshade(&["eval", &mini(), "--method", "dir", "--set", "output.frames=2"]);
+    let o = mrshade(&["eval", &mini(), "--method", "dir", "--set", "output.frames=2", "--set", "sequence.samples=2"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let table = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(table.contains("| desk-orbit-mini | dir | footage, settles over 1 frame |"), "{table}");

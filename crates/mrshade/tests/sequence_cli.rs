@@ -18,9 +18,23 @@ fn rgb(path: &Path) -> Vec<u8> {
 #[test]
 fn a_sequence_renders_one_image_per_frame_numbered_as_its_input() {
     let out = tempfile::tempdir().unwrap();
-    let folder = out.path().join("frames");
-    let o = mrshade(&["render", &session(), "--method", "direct", "-o", folder.to_str().unwrap()]);
+    let (folder, aovs) = (out.path().join("frames"), out.path().join("aovs"));
+    let o = mrshade(&[
+        "render",
+        &session(),
+        "--method",
+        "direct",
+        "--set",
+        "sequence.samples=2",
+        "-o",
+        folder.to_str().unwrap(),
+        "--aov-dir",
+        aovs.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    for file in ["0000/l_rv.exr", "0022/side_by_side.png"] {
+        assert!(aovs.join(file).is_file(), "no AOV {file} per frame");
+    }
     let mut names: Vec<String> =
         std::fs::read_dir(&folder).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     names.sort();
