@@ -78,7 +78,10 @@ fn eval_plays_a_temporal_method_through_the_sequence() {
     let o = mrshade(&["eval", &mini(), "--method", "dir", "--set", "output.frames=2", "--set", "sequence.samples=2"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let table = String::from_utf8_lossy(&o.stdout).into_owned();
-    assert!(table.contains("| desk-orbit-mini | dir | footage, settles over 1 frame |"), "{table}");
+    assert!(
+        table.contains("| desk-orbit-mini | dir | footage, 2 samples per frame, settles over 1 frame |"),
+        "{table}"
+    );
     assert!(table.contains("12/12"), "dir beats the photo on every frame: {table}");
 }
 

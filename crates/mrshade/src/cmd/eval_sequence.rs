@@ -229,10 +229,11 @@ pub fn eval_sequence(
         let settle = session.output.frames / 2;
         log.info(format!("{scene}: {method}, played as footage (settling over {settle} frames first)"));
         let (frames, seconds) = play(ctx, &session, plan, scene, method, args, &truth, log)?;
+        let samples = session.sequence.as_ref().map_or(1, |seq| seq.samples);
+        let plural = |n: u32, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
         let setting = match settle {
-            0 => "footage".to_string(),
-            1 => "footage, settles over 1 frame".to_string(),
-            n => format!("footage, settles over {n} frames"),
+            0 => format!("footage, {} per frame", plural(samples, "sample")),
+            n => format!("footage, {} per frame, settles over {}", plural(samples, "sample"), plural(n, "frame")),
         };
         runs.push(run(method, setting, seconds, ctx.info.name.clone(), frames));
         summary_line(scene, &runs[runs.len() - 1], n, log);
