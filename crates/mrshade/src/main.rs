@@ -13,6 +13,11 @@ fn main() {
     // A panic is a bug in mrshade; still, it is reported as one line, like any error.
     std::panic::set_hook(Box::new(|info| {
         let message = mrshade_core::text::panic_message(info);
+        // `mrshade info | head`: the reader closed the pipe; stop as a Unix tool does on
+        // SIGPIPE (which Rust ignores, so that println! panics instead), without a report.
+        if message.contains("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
         eprintln!("error: internal error (a bug in mrshade, please report it): {}", one_line(&message));
     }));
     let cli = args::Cli::parse();

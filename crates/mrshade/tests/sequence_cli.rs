@@ -114,3 +114,24 @@ fn misuse_and_bad_sequences_are_one_line_errors() {
     assert_one_line_error(&o, "transforms.json");
     assert!(stderr(&o).contains("frame 3"), "{}", stderr(&o));
 }
+
+/// `info` names the sequence and its camera; its output piped into a reader that stops early
+/// (`mrshade info … | head -1`) ends quietly, not with an internal-error report.
+#[test]
+fn info_describes_a_sequence_and_stops_quietly_on_a_closed_pipe() {
+    let o = mrshade(&["-q", "info", &session()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("sequence   12 frames at 15 fps, 32 samples per frame, posed by transforms.json"), "{out}");
+    let runtime = tempfile::tempdir().unwrap();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_mrshade"))
+        .args(["-q", "info", &session()])
+        .env("XDG_RUNTIME_DIR", runtime.path())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert!(!stderr(&o).contains("internal error"), "{}", stderr(&o));
+}

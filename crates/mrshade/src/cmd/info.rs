@@ -24,6 +24,29 @@ pub fn info(args: &InfoArgs, log: Log) -> Result<()> {
     println!("session    {}", printable(&s.origin));
     println!("output     {}×{} (supersample {})", s.output.width, s.output.height, s.output.supersample);
     println!("camera     {} (yfov {:.1}°)", printable(&camera.node_name), camera.yfov.to_degrees());
+    if let Some(seq) = &s.sequence {
+        let first = &seq.frames[0];
+        let k = first.intrinsics;
+        println!(
+            "sequence   {} frames at {} fps, {} samples per frame{}; frame {}: fl {:.1}×{:.1} px, centre ({:.1}, {:.1}) of {}×{}",
+            seq.frames.len(),
+            seq.fps,
+            seq.samples,
+            if seq.from_transforms { ", posed by transforms.json" } else { ", one photo" },
+            printable(&first.name),
+            k.fl_x,
+            k.fl_y,
+            k.cx,
+            k.cy,
+            k.width,
+            k.height
+        );
+    }
+    if s.scene.is_animated() {
+        let names: Vec<_> = s.scene.animations.iter().map(|a| printable(&a.name).into_owned()).collect();
+        let (from, to) = s.scene.time_range().unwrap_or((0.0, 0.0));
+        println!("animations {} ({from:.2}–{to:.2} s)", names.join(", "));
+    }
     println!("exposure   {}", s.exposure);
     println!("method     {}", s.settings.method.name());
     println!("composite  {}", s.settings.composite.mode.name());
