@@ -172,7 +172,8 @@ impl Report {
     }
 }
 
-fn escape(text: &str) -> String {
+/// `text` safe inside HTML text and quoted attribute values.
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 

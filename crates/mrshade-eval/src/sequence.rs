@@ -3,6 +3,7 @@
 //! photo), the sequence-versus-stills quality bar, and the Markdown and HTML that show them
 //! (an inline SVG plot of FLIP per frame and a frame slider, no script library).
 
+use crate::report::escape;
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -440,10 +441,6 @@ for (const sec of document.querySelectorAll("section.sequence")) {
 }
 </script>
 "#;
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
 
 #[cfg(test)]
 mod tests {

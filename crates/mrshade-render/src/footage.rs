@@ -66,7 +66,7 @@ impl FrameData {
             Some(seq) => seq.frames.get(k).map_or_else(|| format!("{k:04}"), |f| f.name.clone()),
             None => format!("{k:04}"),
         };
-        let packed = PackedPhoto::new(&photo);
+        let packed = PackedPhoto::new(&photo, (session.output.width, session.output.height));
         Ok(Self { index: k, name, camera, photo, packed, instances, lights })
     }
 

@@ -20,7 +20,7 @@ pub struct FrameInputs<'a> {
     pub camera: CameraView,
     /// Sub-pixel offset of the camera's image, in pixels (still images average jittered frames).
     pub jitter: Vec2,
-    /// The photo, packed for upload; `None` keeps the last one.
+    /// The photo, packed at the output size; `None` keeps the last one.
     pub photo: Option<&'a PackedPhoto>,
     /// `world_from_object` per scene instance; `None` keeps the last.
     pub instances: Option<&'a [Mat4]>,

@@ -86,7 +86,7 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let mut photo = PhotoUpload::new(ctx, uniforms.output_size());
-        photo.write(&ctx.queue, &PackedPhoto::new(&session.background));
+        photo.write(&ctx.queue, &PackedPhoto::new(&session.background, uniforms.output_size()));
         let settings = &session.settings;
         let internal = uniforms.internal_size();
 

@@ -4,7 +4,6 @@
 use super::{Log, load_session, open_gpu};
 use crate::args::BenchArgs;
 use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressStyle};
 use mrshade_gpu::GpuOptions;
 use mrshade_gpu::timing::{flatten, profiler};
 use mrshade_render::footage::FrameData;
@@ -103,8 +102,7 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     ));
 
     let total = (args.warmup + args.frames) as u64;
-    let bar = if log.shows_progress() { ProgressBar::new(total) } else { ProgressBar::hidden() };
-    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}").context("progress style")?);
+    let bar = log.progress(total, crate::cmd::STILL_BAR)?;
     let mut frames: Vec<Vec<(String, f64, f64)>> = Vec::new();
     let mut submit_ms = Vec::new();
     let mut previous = None;

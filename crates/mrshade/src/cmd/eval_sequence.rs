@@ -273,7 +273,7 @@ fn play(
         log.warn(w);
     }
     // From frame 0 there is no warm-up: the frames played are the frames scored.
-    let bar = progress_bar(log, range.len() as u64)?;
+    let bar = log.progress(range.len() as u64, crate::cmd::STILL_BAR)?;
     let started = Instant::now();
     let mut scoring = Duration::ZERO;
     let mut frames = Vec::with_capacity(range.len());
@@ -309,7 +309,7 @@ fn stills(
 ) -> Result<(Vec<FrameScores>, f64)> {
     let images = Images::new(args, scene, name)?;
     let per_still = session.output.frames;
-    let bar = progress_bar(log, (plan.frames.len() * per_still as usize) as u64)?;
+    let bar = log.progress((plan.frames.len() * per_still as usize) as u64, crate::cmd::STILL_BAR)?;
     let mut seconds = 0.0;
     let mut frames = Vec::with_capacity(plan.frames.len());
     for k in 0..plan.frames.len() {
@@ -369,10 +369,4 @@ fn summary_line(scene: &str, run: &MethodRun, frames: usize, log: Log) {
         f(s.worst_flip_region),
         run.seconds
     ));
-}
-
-fn progress_bar(log: Log, len: u64) -> Result<indicatif::ProgressBar> {
-    let bar = if log.shows_progress() { indicatif::ProgressBar::new(len) } else { indicatif::ProgressBar::hidden() };
-    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}")?);
-    Ok(bar)
 }

@@ -15,6 +15,9 @@ use mrshade_core::text::printable;
 use mrshade_gpu::{GpuContext, GpuOptions};
 use mrshade_scene::{Session, SessionOverrides};
 
+/// Progress of frames.
+const STILL_BAR: &str = "{bar:40} {pos}/{len} frames {elapsed}";
+
 /// Progress and warnings on stderr, unless `--quiet`.
 #[derive(Clone, Copy)]
 pub struct Log {
@@ -32,6 +35,15 @@ impl Log {
     /// Whether progress is shown.
     pub fn shows_progress(&self) -> bool {
         !self.quiet
+    }
+
+    /// A progress bar of `len` steps drawn with `template` (indicatif's), hidden under
+    /// `--quiet`.
+    pub fn progress(&self, len: u64, template: &str) -> Result<indicatif::ProgressBar> {
+        let bar =
+            if self.shows_progress() { indicatif::ProgressBar::new(len) } else { indicatif::ProgressBar::hidden() };
+        bar.set_style(indicatif::ProgressStyle::with_template(template)?);
+        Ok(bar)
     }
 
     /// A warning line.

@@ -41,12 +41,7 @@ pub fn render_reference(session: &Session, log: Log) -> Result<(ReferenceImage, 
     for w in mrshade_reference::warnings(&session.scene) {
         log.warn(w);
     }
-    let bar = if log.shows_progress() {
-        indicatif::ProgressBar::new(session.output.height as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} rows {elapsed} (eta {eta})")?);
+    let bar = log.progress(session.output.height as u64, "{bar:40} {pos}/{len} rows {elapsed} (eta {eta})")?;
     let started = Instant::now();
     let image = mrshade_reference::render(session, &|done, _| bar.set_position(done as u64));
     bar.finish_and_clear();

@@ -73,12 +73,10 @@ fn render_session(session: &Session, out: &Path, aov_dir: Option<&Path>, gpu: &G
 
 /// A still of `frames` frames, with a progress bar.
 pub fn render_still(renderer: &mut Renderer, ctx: &GpuContext, frames: u32, log: Log) -> Result<Composite> {
-    let bar = if log.shows_progress() && frames > 1 {
-        indicatif::ProgressBar::new(frames as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed}")?);
+    let bar = log.progress(frames as u64, crate::cmd::STILL_BAR)?;
+    if frames == 1 {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
     let composite = renderer.render_still(ctx, frames, |i| bar.set_position(i as u64))?;
     bar.finish_and_clear();
     Ok(composite)

@@ -15,6 +15,9 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
 
+/// Progress of footage: frames and their rate.
+const FOOTAGE_BAR: &str = "{bar:40} {pos}/{len} frames {per_sec} {elapsed}";
+
 /// Renders the frames `args` asks for.
 pub fn render_sequence(session: &Session, args: &RenderArgs, ctx: &GpuContext, log: Log) -> Result<()> {
     let count = session.frame_count();
@@ -42,7 +45,7 @@ pub fn render_sequence(session: &Session, args: &RenderArgs, ctx: &GpuContext, l
         session.settings.method.name(),
         fps(session)
     ));
-    let bar = progress_bar(log, playback_length(&range, args.warmup) as u64)?;
+    let bar = log.progress(playback_length(&range, args.warmup) as u64, FOOTAGE_BAR)?;
     let started = std::time::Instant::now();
     renderer.play_with_warmup(
         ctx,
@@ -98,7 +101,7 @@ fn render_one(session: &Session, args: &RenderArgs, ctx: &GpuContext, k: usize, 
         log.warn(w);
     }
     let frames = session.output.frames;
-    let bar = progress_bar(log, frames as u64)?;
+    let bar = log.progress(frames as u64, crate::cmd::STILL_BAR)?;
     let composite = renderer.render_still_of(ctx, frames, &data.inputs(), |i| bar.set_position(i as u64))?;
     bar.finish_and_clear();
     output::write_image(out, &composite.image)?;
@@ -146,12 +149,6 @@ fn check_folder(dir: &Path) -> Result<()> {
         );
     }
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))
-}
-
-fn progress_bar(log: Log, len: u64) -> Result<indicatif::ProgressBar> {
-    let bar = if log.shows_progress() { indicatif::ProgressBar::new(len) } else { indicatif::ProgressBar::hidden() };
-    bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {per_sec} {elapsed}")?);
-    Ok(bar)
 }
 
 /// Frames piped into ffmpeg as raw RGB.

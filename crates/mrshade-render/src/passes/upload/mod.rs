@@ -19,8 +19,15 @@ pub struct PackedPhoto {
 }
 
 impl PackedPhoto {
-    /// Packs `image`.
-    pub fn new(image: &HdrImage) -> Self {
+    /// Packs `image` at `(width, height)`, resizing it when it has another size.
+    pub fn new(image: &HdrImage, (width, height): (u32, u32)) -> Self {
+        let resized;
+        let image = if (image.width, image.height) == (width, height) {
+            image
+        } else {
+            resized = image.resized(width, height);
+            &resized
+        };
         let rgba: Vec<f32> = image.pixels.iter().flat_map(|p| [p[0], p[1], p[2], 1.0]).collect();
         let mut texels = vec![f16::ZERO; rgba.len()];
         half::slice::HalfFloatSliceExt::convert_from_f32_slice(&mut texels[..], &rgba);
@@ -49,17 +56,10 @@ impl PhotoUpload {
         Self { photo: Target::new_2d(&ctx.device, "upload/photo", size, Self::FORMAT, usage) }
     }
 
-    /// Uploads `photo` before the next frame; one of another size is resized first.
+    /// Uploads `photo`, packed at the output size, before the next frame.
     pub fn write(&mut self, queue: &wgpu::Queue, photo: &PackedPhoto) {
         let (w, h) = self.photo.size();
-        if (photo.width, photo.height) != (w, h) {
-            let image = HdrImage {
-                width: photo.width,
-                height: photo.height,
-                pixels: photo.texels.chunks_exact(4).map(|t| [t[0].to_f32(), t[1].to_f32(), t[2].to_f32()]).collect(),
-            };
-            return self.write(queue, &PackedPhoto::new(&image.resized(w, h)));
-        }
+        assert_eq!((photo.width, photo.height), (w, h), "a photo is packed at the renderer's output size");
         mrshade_gpu::texture::write_level(
             queue,
             &self.photo.texture,

@@ -35,102 +35,30 @@
 //! its aspect ratio is not checked. `background` holds frame 0's photo and the output size
 //! defaults to its size; [`Session::photo_at`] and [`Session::view_at`] give any frame's.
 
+mod file;
+mod output;
+
+pub use output::{MAX_OUTPUT_SIDE, MIN_OUTPUT_SIDE, OutputSize};
+
+use file::{SessionFile, parse};
+use output::{check_aspect, output_size};
+
 use crate::assets::ReadPolicy;
 use crate::budget::Budget;
-use crate::sequence::{DEFAULT_FPS, DEFAULT_SAMPLES, DEFAULT_ZNEAR, MAX_SAMPLES, Sequence, SequenceFrame, check_fps};
+use crate::sequence::{DEFAULT_FPS, DEFAULT_ZNEAR, MAX_SAMPLES, Sequence, SequenceFrame, check_fps};
 use crate::{AssetSource, Camera, Scene, gltf::load_gltf, images};
 use anyhow::{Context, Result, bail};
 use glam::Mat4;
 use mrshade_core::HdrImage;
 use mrshade_core::camera::{CameraView, Intrinsics};
-use mrshade_core::settings::{
-    CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, RenderSettings, ShadowSettings,
-};
+use mrshade_core::settings::{Limits, Method, RenderSettings};
 use mrshade_core::text::number;
-use serde::Deserialize;
 use std::path::PathBuf;
 
-/// Largest accepted output side, in pixels.
-pub const MAX_OUTPUT_SIDE: u32 = 16384;
-/// Smallest accepted output side, in pixels. The real-time methods shade one sample at the
-/// centre of each pixel (× supersample²) while the photo is averaged over it; a pixel that
-/// covers much of the scene shows whatever lies at its centre (a 1×1 render of a desk was the
-/// white of a lamp-lit torus). Render larger and downscale.
-pub const MIN_OUTPUT_SIDE: u32 = 16;
-/// Relative aspect-ratio mismatch tolerated between photo, camera and output size.
-const ASPECT_TOLERANCE: f32 = 0.01;
 /// Largest session file read, in bytes (a session is a few lines of TOML).
 const MAX_SESSION_BYTES: u64 = 16 << 20;
 /// Range of `exposure`: outside it the camera values over- or underflow single precision.
 const EXPOSURE_RANGE: std::ops::RangeInclusive<f32> = 1e-12..=1e12;
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SessionFile {
-    scene: String,
-    background: Option<String>,
-    #[serde(default = "one")]
-    exposure: f32,
-    camera: Option<String>,
-    #[serde(default)]
-    method: Method,
-    environment: Option<EnvironmentFile>,
-    #[serde(default)]
-    output: OutputFile,
-    #[serde(default)]
-    composite: CompositeSettings,
-    #[serde(default)]
-    shadows: ShadowSettings,
-    #[serde(default)]
-    dir: DirSettings,
-    #[serde(default)]
-    reference: ReferenceSettings,
-    #[serde(default)]
-    limits: Limits,
-    sequence: Option<SequenceFile>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SequenceFile {
-    transforms: Option<String>,
-    frames: Option<u32>,
-    #[serde(default = "default_fps")]
-    fps: f32,
-    #[serde(default = "default_samples")]
-    samples: u32,
-}
-
-fn default_samples() -> u32 {
-    DEFAULT_SAMPLES
-}
-
-fn default_fps() -> f32 {
-    DEFAULT_FPS
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct EnvironmentFile {
-    image: String,
-    #[serde(default)]
-    rotation_deg: f32,
-    #[serde(default = "one")]
-    intensity: f32,
-}
-
-#[derive(Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-struct OutputFile {
-    width: Option<u32>,
-    height: Option<u32>,
-    supersample: Option<u32>,
-    frames: Option<u32>,
-}
-
-fn one() -> f32 {
-    1.0
-}
 
 /// The real light probe.
 #[derive(Clone, Debug)]
@@ -141,20 +69,6 @@ pub struct Environment {
     pub rotation_deg: f32,
     /// Radiance scale.
     pub intensity: f32,
-}
-
-/// Output resolution and shading rate.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct OutputSize {
-    /// Output width in pixels.
-    pub width: u32,
-    /// Output height in pixels.
-    pub height: u32,
-    /// Shading samples per output pixel along each axis (1 = none).
-    pub supersample: u32,
-    /// Frames rendered for one still image. Temporal methods converge over the first half;
-    /// the still is the mean of the second half (VPL sampling then averages out).
-    pub frames: u32,
 }
 
 /// Command-line changes applied before the session is parsed, so they are checked as
@@ -510,47 +424,6 @@ fn readable_folder(source: &AssetSource, rel: &str, limits: &Limits, overrides: 
     }
 }
 
-/// Parses the TOML after applying `--set` overrides to its table.
-fn parse(text: &str, overrides: &SessionOverrides) -> Result<SessionFile> {
-    if overrides.set.is_empty() {
-        return toml::from_str(text).map_err(|e| toml_error(text, &e));
-    }
-    let mut table: toml::Table = toml::from_str(text).map_err(|e| toml_error(text, &e))?;
-    for pair in &overrides.set {
-        apply_set(&mut table, pair)?;
-    }
-    let merged = toml::to_string(&table)?;
-    toml::from_str(&merged).map_err(|e| toml_error(&merged, &e).context("with the --set overrides"))
-}
-
-/// A TOML error as one line: where, the offending line's text, and what is wrong.
-fn toml_error(text: &str, e: &toml::de::Error) -> anyhow::Error {
-    let message = e.message().trim().replace('\n', " ");
-    let Some(span) = e.span() else { return anyhow::anyhow!("{message}") };
-    let start = span.start.min(text.len());
-    let line = text[..start].matches('\n').count() + 1;
-    let source = text.lines().nth(line - 1).unwrap_or("").trim();
-    let source = mrshade_core::text::printable(source);
-    anyhow::anyhow!("line {line} (`{source}`): {}", mrshade_core::text::printable(&message))
-}
-
-/// Applies one `dotted.key=value` override.
-fn apply_set(table: &mut toml::Table, pair: &str) -> Result<()> {
-    let (key, value) = pair.split_once('=').with_context(|| format!("--set {pair}: expected KEY=VALUE"))?;
-    let value: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-        Ok(mut t) => t.remove("v").context("unreachable")?,
-        Err(_) => toml::Value::String(value.to_string()),
-    };
-    let parts: Vec<&str> = key.trim().split('.').collect();
-    let mut node = table;
-    for part in &parts[..parts.len() - 1] {
-        let entry = node.entry(part.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        node = entry.as_table_mut().with_context(|| format!("--set {pair}: `{part}` is not a table"))?;
-    }
-    node.insert(parts[parts.len() - 1].to_string(), value);
-    Ok(())
-}
-
 fn pick_camera(scene: &Scene, name: Option<&str>) -> Result<usize> {
     if scene.cameras.is_empty() {
         bail!("the glTF has no perspective camera; add a camera node");
@@ -562,75 +435,4 @@ fn pick_camera(scene: &Scene, name: Option<&str>) -> Result<usize> {
             format!("no camera named '{name}' (cameras: {})", known.join(", "))
         }),
     }
-}
-
-fn check_aspect(a: f32, b: f32) -> Result<()> {
-    if (a / b - 1.0).abs() > ASPECT_TOLERANCE {
-        bail!("aspect ratios {a:.4} and {b:.4} differ");
-    }
-    Ok(())
-}
-
-fn output_size(
-    file: &OutputFile,
-    overrides: &SessionOverrides,
-    photo: &HdrImage,
-    method: Method,
-    budget: &Budget,
-) -> Result<OutputSize> {
-    let width = overrides.width.or(file.width);
-    let height = overrides.height.or(file.height);
-    // What was asked for is checked as asked, before anything is derived from it.
-    for (name, v) in [("width", width), ("height", height)] {
-        if let Some(v) = v
-            && !(MIN_OUTPUT_SIDE..=MAX_OUTPUT_SIDE).contains(&v)
-        {
-            bail!("{name} must be between {MIN_OUTPUT_SIDE} and {MAX_OUTPUT_SIDE}, got {v}");
-        }
-    }
-    let aspect = photo.aspect();
-    let derived = |v: f32, name: &str, from: &str, given: u32| -> Result<u32> {
-        let v = v.round() as u32;
-        if !(MIN_OUTPUT_SIDE..=MAX_OUTPUT_SIDE).contains(&v) {
-            bail!(
-                "{from} {given} gives a {name} of {v} at the photo's aspect ratio ({}×{}), outside \
-                 {MIN_OUTPUT_SIDE}..={MAX_OUTPUT_SIDE}",
-                photo.width,
-                photo.height
-            );
-        }
-        Ok(v)
-    };
-    let (width, height) = match (width, height) {
-        (None, None) => {
-            if photo.width.min(photo.height) < MIN_OUTPUT_SIDE {
-                bail!(
-                    "the photo is {}×{}; outputs are at least {MIN_OUTPUT_SIDE} pixels a side: give --width",
-                    photo.width,
-                    photo.height
-                );
-            }
-            (photo.width, photo.height)
-        }
-        (Some(w), None) => (w, derived(w as f32 / aspect, "height", "width", w)?),
-        (None, Some(h)) => (derived(h as f32 * aspect, "width", "height", h)?, h),
-        (Some(w), Some(h)) => {
-            if !overrides.stretch_photo {
-                check_aspect(w as f32 / h as f32, aspect).with_context(|| {
-                    format!("{w}×{h} does not have the photo's aspect ratio ({}×{})", photo.width, photo.height)
-                })?;
-            }
-            (w, h)
-        }
-    };
-    budget.check_image(width, height).context("the output size")?;
-    let supersample = file.supersample.unwrap_or(1);
-    if !(1..=4).contains(&supersample) {
-        bail!("supersample must be between 1 and 4, got {supersample}");
-    }
-    let frames = file.frames.unwrap_or(method.default_still_frames());
-    if !(1..=10_000).contains(&frames) {
-        bail!("frames must be between 1 and 10000, got {frames}");
-    }
-    Ok(OutputSize { width, height, supersample, frames })
 }
