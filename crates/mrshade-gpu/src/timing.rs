@@ -85,3 +85,11 @@ pub fn flatten(results: &[GpuTimerQueryResult]) -> Vec<(String, f64, f64)> {
     }
     out
 }
+
+/// One frame's GPU time in milliseconds: from its first pass's start to its last pass's end
+/// (`passes` as [`flatten`] gives them); `None` without any timed pass.
+pub fn frame_ms(passes: &[(String, f64, f64)]) -> Option<f64> {
+    let start = passes.iter().map(|p| p.1).reduce(f64::min)?;
+    let end = passes.iter().map(|p| p.2).reduce(f64::max)?;
+    Some((end - start) * 1e3)
+}

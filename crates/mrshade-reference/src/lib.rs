@@ -20,7 +20,7 @@ pub mod sampler;
 pub mod surface;
 mod texture;
 
-pub use render::{ReferenceImage, render};
+pub use render::{ReferenceImage, render, render_pose};
 
 /// What the path tracer renders otherwise than `scene` asks, one line each: transmission is
 /// always smooth (`bsdf`), so rough glass is rendered as smooth glass.

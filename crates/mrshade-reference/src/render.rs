@@ -38,15 +38,38 @@ struct PixelSums {
     virtual_count: u32,
 }
 
-/// Renders `session` with its `[reference]` settings. `progress(rows_done, rows)` is called
-/// from worker threads as rows finish.
+/// Renders `session` in its rest pose (skinned and morphing instances deformed) with its
+/// `[reference]` settings. `progress(rows_done, rows)` is called from worker threads as rows
+/// finish.
 pub fn render(session: &Session, progress: &(dyn Fn(u32, u32) + Sync)) -> ReferenceImage {
+    if session.scene.has_deformations() {
+        render_pose(session, &session.scene.rest_pose(), progress)
+    } else {
+        render_scene(session, &session.scene, progress)
+    }
+}
+
+/// Renders `session` with its scene in `pose` (a frame of its animations: instances, lights
+/// and the camera moved, skins and morph targets deformed). The BVH is built for the pose.
+pub fn render_pose(
+    session: &Session,
+    pose: &mrshade_scene::ScenePose,
+    progress: &(dyn Fn(u32, u32) + Sync),
+) -> ReferenceImage {
+    render_scene(session, &session.scene.posed(pose), progress)
+}
+
+fn render_scene(
+    session: &Session,
+    scene: &mrshade_scene::Scene,
+    progress: &(dyn Fn(u32, u32) + Sync),
+) -> ReferenceImage {
     let settings = session.settings.reference;
-    let geometry = Geometry::new(&session.scene);
+    let geometry = Geometry::new(scene);
     let environment = session.environment.as_ref().map(EnvironmentLight::new);
-    let tracer = Tracer { scene: &session.scene, geometry: &geometry, environment: environment.as_ref(), settings };
+    let tracer = Tracer { scene, geometry: &geometry, environment: environment.as_ref(), settings };
     let (width, height) = (session.output.width, session.output.height);
-    let camera = &session.scene.cameras[session.camera];
+    let camera = &scene.cameras[session.camera];
     let tan_half = (camera.yfov * 0.5).tan();
     let aspect = width as f32 / height as f32;
     let origin = camera.world_from_camera.w_axis.xyz();

@@ -22,7 +22,7 @@ use glam::Mat4;
 use mrshade_core::HdrImage;
 use mrshade_core::camera::CameraView;
 use mrshade_gpu::GpuContext;
-use mrshade_scene::Session;
+use mrshade_scene::{Deformation, Session};
 use std::ops::Range;
 
 /// Frames a range renders before its first written frame, unwritten.
@@ -44,6 +44,8 @@ pub struct FrameData {
     pub instances: Option<Vec<Mat4>>,
     /// Animated `world_from_light` per light.
     pub lights: Option<Vec<Mat4>>,
+    /// Skin joint matrices and morph weights per instance (`None` without animations).
+    pub deformations: Option<Vec<Deformation>>,
 }
 
 impl FrameData {
@@ -51,23 +53,21 @@ impl FrameData {
     pub fn load(session: &Session, k: usize) -> Result<Self> {
         let mut camera = session.view_at(k);
         let photo = session.photo_at(k)?;
-        let (mut instances, mut lights) = (None, None);
+        let (mut instances, mut lights, mut deformations) = (None, None, None);
         if session.scene.is_animated() {
             let time = session.sequence.as_ref().map_or(0.0, |seq| seq.time(k));
             let pose = session.scene.pose_at(time).with_context(|| format!("frame {k} (t = {time} s)"))?;
-            let posed_by_transforms = session.sequence.as_ref().is_some_and(|seq| seq.from_transforms);
-            if !posed_by_transforms && let Some(&m) = pose.cameras.get(session.camera) {
-                camera.world_from_camera = m;
-            }
+            camera = session.animated_view(camera, &pose);
             instances = Some(pose.instances);
             lights = Some(pose.lights);
+            deformations = Some(pose.deformations);
         }
         let name = match &session.sequence {
             Some(seq) => seq.frames.get(k).map_or_else(|| format!("{k:04}"), |f| f.name.clone()),
             None => format!("{k:04}"),
         };
         let packed = PackedPhoto::new(&photo, (session.output.width, session.output.height));
-        Ok(Self { index: k, name, camera, photo, packed, instances, lights })
+        Ok(Self { index: k, name, camera, photo, packed, instances, lights, deformations })
     }
 
     /// The frame's inputs for the renderer.
@@ -78,6 +78,7 @@ impl FrameData {
             photo: Some(&self.packed),
             instances: self.instances.as_deref(),
             lights: self.lights.as_deref(),
+            deformations: self.deformations.as_deref(),
         }
     }
 }

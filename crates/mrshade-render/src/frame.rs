@@ -11,6 +11,7 @@ use glam::{Mat4, Vec2};
 use mrshade_core::camera::CameraView;
 use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::Recorder;
+use mrshade_scene::Deformation;
 use wgpu_profiler::GpuProfiler;
 
 /// What changes from frame to frame: the camera, the photo, where things are.
@@ -26,18 +27,25 @@ pub struct FrameInputs<'a> {
     pub instances: Option<&'a [Mat4]>,
     /// `world_from_light` per scene light; `None` keeps the last.
     pub lights: Option<&'a [Mat4]>,
+    /// Skin joint matrices and morph weights per scene instance; `None` keeps the last.
+    pub deformations: Option<&'a [Deformation]>,
 }
 
 impl<'a> FrameInputs<'a> {
     /// A frame through `camera` with everything else as it was.
     pub fn camera(camera: CameraView) -> Self {
-        Self { camera, jitter: Vec2::ZERO, photo: None, instances: None, lights: None }
+        Self { camera, jitter: Vec2::ZERO, photo: None, instances: None, lights: None, deformations: None }
     }
 }
 
 impl Renderer {
     /// Records one frame: the passes in order, each reading what the ones before wrote.
     pub fn record_frame(&mut self, rec: &mut Recorder) {
+        // 0. rest vertices, joint matrices, morph weights ─▶ deformed vertices (skinned and
+        //    morphing instances only, when they changed), read by every pass below.
+        if let Some(deform) = &mut self.deform {
+            deform.record(rec);
+        }
         let raster = &self.rasterizer;
         // 1. geometry, lights ─▶ shadow maps, real-only and virtual-only casters per light.
         self.shadows.record(rec, raster);
@@ -67,6 +75,11 @@ impl Renderer {
                 self.scene.geometry.set_transform(i, m);
             }
         }
+        if let (Some(deform), Some(deformations)) = (&mut self.deform, inputs.deformations) {
+            for (instance, object_box) in deform.update(queue, deformations) {
+                self.scene.geometry.set_deformed_box(instance, object_box);
+            }
+        }
         let lights_moved = inputs.lights.is_some_and(|l| self.scene.set_light_transforms(queue, l));
         if lights_moved {
             self.shadows.set_layers(queue, &self.scene.shadow_layers);
@@ -83,6 +96,7 @@ impl Renderer {
         let change = FrameChange {
             geometry: &self.scene.geometry,
             geometry_moved: self.scene.geometry.moved(),
+            vertices_deformed: self.scene.geometry.deformed(),
             moved_light_layers: lights_moved.then_some(&self.scene.shadow_layers[..]),
             camera_moved,
         };

@@ -5,7 +5,8 @@
 //! `Differential { rv: L_rv, r: L_r }` → composite with the photo. Shared passes live in
 //! `passes/<name>/` with their shaders. `Renderer` owns the GPU scene, the passes and their
 //! targets for one session and renders frames from per-frame inputs ([`FrameInputs`]: camera,
-//! photo, transforms); still images accumulate frames outside the frame (`still.rs`).
+//! photo, transforms); still images accumulate frames outside the frame (`still.rs`), and a
+//! live stream feeds it one frame of RGB bytes and poses at a time ([`stream`]).
 
 pub mod footage;
 pub mod ibl;
@@ -15,6 +16,7 @@ pub mod outputs;
 pub mod passes;
 pub mod raster;
 pub mod scene_gpu;
+pub mod stream;
 pub mod uniforms;
 
 mod frame;

@@ -256,6 +256,7 @@ mod tests {
             limits: Default::default(),
             warnings: Vec::new(),
             sequence: None,
+            inserts: Vec::new(),
         }
     }
 

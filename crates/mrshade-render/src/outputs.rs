@@ -2,7 +2,7 @@
 
 use crate::methods::AovView;
 use crate::renderer::Renderer;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use half::f16;
 use mrshade_core::flags::{SURFACE_COVERED, SURFACE_REAL};
 use mrshade_core::{Differential, HdrImage};
@@ -55,6 +55,18 @@ impl Renderer {
     /// Reads `L_rv` and `L_r` (radiance, before exposure) at the internal size.
     pub fn read_radiance(&self, ctx: &GpuContext) -> Result<Differential<HdrImage>> {
         Ok(Differential { rv: read_rgba16f(ctx, &self.radiance.rv)?, r: read_rgba16f(ctx, &self.radiance.r)? })
+    }
+
+    /// Reads back the vertices of instance `index` as the passes see them (after this
+    /// frame's skinning and morphing): positions and normals in its object space (world
+    /// space for a skinned instance).
+    pub fn read_instance_vertices(&self, ctx: &GpuContext, index: usize) -> Result<Vec<(glam::Vec3, glam::Vec3)>> {
+        let geometry = &self.scene.geometry;
+        let (first, count) = geometry.vertex_range(index);
+        let bytes = readback::read_buffer(ctx, &geometry.vertices)?;
+        let vertices: &[crate::scene_gpu::Vertex] = bytemuck::cast_slice(&bytes);
+        let range = vertices.get(first..first + count).context("the instance's vertices lie outside the buffer")?;
+        Ok(range.iter().map(|v| (glam::Vec3::from(v.position), glam::Vec3::from(v.normal))).collect())
     }
 
     /// Reads the G-buffer flag words at the internal size.

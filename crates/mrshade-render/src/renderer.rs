@@ -3,6 +3,7 @@
 
 use crate::methods::{LightTransport, MethodInputs};
 use crate::passes::composite::{CompositePass, CompositeTargets};
+use crate::passes::deform::DeformPass;
 use crate::passes::direct::{DirectPass, radiance_targets};
 use crate::passes::gbuffer::{GBuffer, GBufferPass};
 use crate::passes::shadow::ShadowPass;
@@ -30,6 +31,8 @@ pub struct Renderer {
     pub(crate) scene: GpuScene,
     pub(crate) rasterizer: Rasterizer,
     pub(crate) shadows: ShadowPass,
+    /// Skinning and morphing (`None` when nothing in the scene deforms).
+    pub(crate) deform: Option<crate::passes::deform::DeformPass>,
     pub(crate) gbuffer: GBuffer,
     pub(crate) gbuffer_pass: GBufferPass,
     /// The light-transport method (the only place the frame holds it).
@@ -77,7 +80,13 @@ impl Renderer {
 
     fn build(ctx: &GpuContext, session: &Session) -> Self {
         let device = &ctx.device;
-        let scene = GpuScene::new(device, &ctx.queue, session);
+        let mut scene = GpuScene::new(device, &ctx.queue, session);
+        let mut deform = DeformPass::new(ctx, &session.scene, &scene.geometry.base_vertex, &scene.geometry.vertices);
+        if let Some(deform) = &mut deform {
+            for (instance, object_box) in deform.update(&ctx.queue, &session.scene.rest_pose().deformations) {
+                scene.geometry.set_deformed_box(instance, object_box);
+            }
+        }
         let session_camera = session.view_at(0);
         let uniforms = FrameUniforms::new(session, &session_camera, scene.light_count, scene.probe.radiance_mips);
         let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -127,6 +136,7 @@ impl Renderer {
             scene,
             rasterizer,
             shadows,
+            deform,
             gbuffer,
             gbuffer_pass,
             method,

@@ -21,5 +21,7 @@ pub mod session;
 pub use assets::AssetSource;
 pub use model::{AlphaMode, Camera, Instance, Light, LightKind, Material, Primitive, Scene, Texture, TextureRef};
 pub use model::{Animation, Channel, Interpolation, NodeLinks, SceneNode, ScenePose, TargetPath, Trs};
+pub use model::{Deformation, MorphTarget, Placement, Skin, VertexSkin, deform_vertices};
+pub use model::{UNIT_TOLERANCE, checked_rotation, checked_scale, checked_translation};
 pub use sequence::{Sequence, SequenceFrame};
 pub use session::{Environment, OutputSize, Session, SessionOverrides};

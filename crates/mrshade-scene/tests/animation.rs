@@ -249,6 +249,7 @@ fn without_animations_poses_are_the_loaded_transforms() {
         instances: scene.instances.iter().map(|i| i.world_from_object).collect(),
         lights: scene.lights.iter().map(|l| l.world_from_light).collect(),
         cameras: scene.cameras.iter().map(|c| c.world_from_camera).collect(),
+        deformations: Vec::new(),
     };
     for t in [0.0, 1.5, 1e6] {
         assert_eq!(pose(&scene, t), loaded);
@@ -316,12 +317,11 @@ fn zero_scales_hide_meshes_but_leave_cameras_without_orientation() {
 }
 
 #[test]
-fn morph_weights_are_ignored_with_a_warning() {
+fn morph_weights_of_a_mesh_without_targets_are_refused() {
     let (mut b, _) = one_box(json!({}));
     animate(&mut b, "smile", &[Track::new(0, "weights", "LINEAR", &[0.0, 1.0], &[0.0, 1.0])]);
-    let scene = load(&b);
-    assert!(!scene.is_animated());
-    assert!(scene.warnings.iter().any(|w| w.contains("animation 'smile' channel 0") && w.contains("morph")));
+    let msg = error_of(&b);
+    assert!(msg.contains("animation 'smile' channel 0") && msg.contains("no morph targets"), "{msg}");
 }
 
 /// The error of one broken track on node 0 of a one-box document.

@@ -89,6 +89,7 @@ pub struct GltfBuilder {
     lights: Vec<Value>,
     cameras: Vec<Value>,
     animations: Vec<Value>,
+    skins: Vec<Value>,
     extensions_used: Vec<String>,
     extensions_required: Vec<String>,
 }
@@ -114,6 +115,7 @@ impl GltfBuilder {
             "SCALAR" => 1,
             "VEC2" => 2,
             "VEC3" => 3,
+            "MAT4" => 16,
             _ => 4,
         };
         let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
@@ -252,6 +254,17 @@ impl GltfBuilder {
         self.animations.len() - 1
     }
 
+    /// A skin from its JSON (its joints name nodes, its matrices an accessor made here).
+    pub fn skin(&mut self, skin: Value) -> usize {
+        self.skins.push(skin);
+        self.skins.len() - 1
+    }
+
+    /// Changes a node's JSON.
+    pub fn patch_node(&mut self, index: usize, f: impl FnOnce(&mut Value)) {
+        f(&mut self.nodes[index]);
+    }
+
     /// Lists an extension as used (and required).
     pub fn use_extension(&mut self, name: &str, required: bool) {
         if !self.extensions_used.iter().any(|e| e == name) {
@@ -287,6 +300,9 @@ impl GltfBuilder {
         });
         if !self.animations.is_empty() {
             doc["animations"] = json!(self.animations);
+        }
+        if !self.skins.is_empty() {
+            doc["skins"] = json!(self.skins);
         }
         if !self.lights.is_empty() {
             doc["extensions"] = json!({"KHR_lights_punctual": {"lights": self.lights}});

@@ -4,7 +4,10 @@
 //!   telling how to install lavapipe.
 //! - [`flip`] and [`golden`]: FLIP (NVIDIA ꟻLIP, via nv-flip) comparisons and golden images.
 //! - [`gltf`]: a small glTF writer for synthetic test scenes and malformed inputs.
+//! - [`deform`]: skinned and morphing test models (Khronos `SimpleSkin`, `AnimatedMorphCube`
+//!   style) with their vertex positions computed by hand.
 
+pub mod deform;
 pub mod flip;
 pub mod gltf;
 pub mod golden;

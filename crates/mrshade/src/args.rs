@@ -40,6 +40,10 @@ pub enum Command {
     /// Render a session with the CPU differential path tracer (unbiased, all cores): L_rv and
     /// L_r from the same paths, composited like the real-time methods. Minutes per image.
     Reference(ReferenceArgs),
+    /// Composite a live stream: raw 8-bit RGB frames (ffmpeg's rawvideo rgb24) of --size W×H
+    /// from stdin to stdout, one renderer frame each (real time), moved by the camera and
+    /// insert poses of --poses (docs/stream.md: webcams, video files, MP4 out).
+    Stream(StreamArgs),
     /// Render benchmark datasets with one or more methods, score each against its answer
     /// (FLIP over the frame and the changed region, PSNR, SSIM), time it, and write a report.
     Eval(EvalArgs),
@@ -154,6 +158,41 @@ pub struct BenchArgs {
     /// Write the results as JSON here.
     #[arg(long, value_name = "OUT.json")]
     pub json: Option<PathBuf>,
+}
+
+/// `mrshade stream`.
+#[derive(Args, Debug)]
+#[command(mut_arg("width", |a| a.hide(true)), mut_arg("height", |a| a.hide(true)))]
+pub struct StreamArgs {
+    /// The session and its overrides (its output size is --size).
+    #[command(flatten)]
+    pub session: SessionArgs,
+    /// Frame size in pixels, in and out: W×H×3 bytes a frame (e.g. 640x480). Its aspect ratio
+    /// must be the session's (see --stretch).
+    #[arg(long, value_name = "WxH", required = true)]
+    pub size: String,
+    /// Frames per second of the source: frame k is at k / F seconds for the scene's animations,
+    /// and a frame that takes longer than 1/F to render is late (default: the session's
+    /// [sequence] fps, else 30).
+    #[arg(long, value_name = "F")]
+    pub fps: Option<f32>,
+    /// Camera and insert poses, one JSON object a line, from a file or a FIFO, read as they
+    /// come (docs/stream.md); a bad line is skipped with a warning.
+    #[arg(long, value_name = "FILE")]
+    pub poses: Option<PathBuf>,
+    /// For live sources: render the newest frame only, dropping (and counting) frames that
+    /// arrive while one renders. By default every frame is rendered and the source waits.
+    #[arg(long)]
+    pub drop_late: bool,
+    /// Render the first frame this many more times before writing it, so that a temporal
+    /// method has converged (as a still's or footage's first frames do).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub settle: u32,
+    /// Accept a --size of another aspect ratio than the session's photo and camera: the
+    /// session's camera keeps its vertical field of view (a transforms session's is stretched);
+    /// give the real intrinsics in --poses.
+    #[arg(long)]
+    pub stretch: bool,
 }
 
 /// `mrshade reference`.

@@ -9,6 +9,10 @@ mod output;
 
 use clap::Parser;
 
+/// Exit status when the reader of our standard output has closed it (`mrshade info | head`):
+/// the status of a Unix tool stopped by SIGPIPE (which Rust ignores), with nothing printed.
+pub const BROKEN_PIPE_EXIT: i32 = 141;
+
 fn main() {
     // A panic is a bug in mrshade; still, it is reported as one line, like any error.
     std::panic::set_hook(Box::new(|info| {
@@ -16,7 +20,7 @@ fn main() {
         // `mrshade info | head`: the reader closed the pipe; stop as a Unix tool does on
         // SIGPIPE (which Rust ignores, so that println! panics instead), without a report.
         if message.contains("failed printing to stdout") && message.contains("Broken pipe") {
-            std::process::exit(141);
+            std::process::exit(BROKEN_PIPE_EXIT);
         }
         eprintln!("error: internal error (a bug in mrshade, please report it): {}", one_line(&message));
     }));

@@ -23,6 +23,7 @@ fn help_everywhere() {
         &["compare", "--help"],
         &["reference", "--help"],
         &["eval", "--help"],
+        &["stream", "--help"],
     ] {
         let o = mrshade(args);
         assert!(o.status.success(), "{args:?}");

@@ -57,12 +57,15 @@ impl Builder {
             uvs: shape.uvs.into_iter().map(Vec2::from).collect(),
             indices: shape.indices,
             material: self.scene.materials.len() - 1,
+            ..Default::default()
         });
         self.scene.instances.push(Instance {
             node_name: "shape".into(),
             primitive: self.scene.primitives.len() - 1,
             world_from_object: Mat4::from_translation(offset),
             realness,
+            skin: None,
+            morph_weights: Vec::new(),
         });
         self
     }
@@ -107,6 +110,7 @@ impl Builder {
             limits: Default::default(),
             warnings: Vec::new(),
             sequence: None,
+            inserts: Vec::new(),
         }
     }
 }

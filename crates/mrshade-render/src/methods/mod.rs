@@ -58,6 +58,9 @@ pub struct FrameChange<'a> {
     pub geometry: &'a Geometry,
     /// Whether an instance moved.
     pub geometry_moved: bool,
+    /// Whether the deformation pass moves vertices this frame (skinned or morphing
+    /// instances changed pose).
+    pub vertices_deformed: bool,
     /// The lights' shadow layers when a light moved (their RSMs must follow); `None` otherwise.
     pub moved_light_layers: Option<&'a [ShadowLayer]>,
     /// Whether the camera moved (history is reprojected; light in the world did not change).

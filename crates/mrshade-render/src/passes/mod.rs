@@ -3,6 +3,7 @@
 //! `crate::frame` calls them in order.
 
 pub mod composite;
+pub mod deform;
 pub mod direct;
 pub mod gbuffer;
 pub mod shadow;

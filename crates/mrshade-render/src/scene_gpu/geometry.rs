@@ -48,6 +48,10 @@ pub struct Geometry {
     pub instances: wgpu::Buffer,
     /// Realness of every instance.
     pub realness: Vec<Realness>,
+    /// First vertex and vertex count of every instance's primitive.
+    vertex_ranges: Vec<(usize, usize)>,
+    /// First vertex of every primitive in `vertices`.
+    pub base_vertex: Vec<u32>,
     static_info: Vec<(UVec4, Mat4)>,
     /// Object-space bounding box of every instance: min, max.
     object_boxes: Vec<(Vec3, Vec3)>,
@@ -55,6 +59,10 @@ pub struct Geometry {
     previous: Vec<Mat4>,
     /// Whether `current` differed from `previous` at the last `begin_frame`.
     moved: bool,
+    /// Whether a deformation changed since the last `begin_frame`.
+    deform_pending: bool,
+    /// Whether one changed before the last `begin_frame` (this frame deforms).
+    deformed: bool,
 }
 
 impl Geometry {
@@ -102,7 +110,8 @@ impl Geometry {
         let storage = wgpu::BufferUsages::STORAGE;
         let current: Vec<Mat4> = static_info.iter().map(|s| s.1).collect();
         let mut geometry = Self {
-            vertices: init("scene/vertices", bytemuck::cast_slice(&vertices), storage),
+            // Copied out by `Renderer::read_instance_vertices` (tests of the deformation pass).
+            vertices: init("scene/vertices", bytemuck::cast_slice(&vertices), storage | wgpu::BufferUsages::COPY_SRC),
             indices: init("scene/indices", bytemuck::cast_slice(&indices), storage),
             triangles: init("scene/triangles", bytemuck::cast_slice(&triangles), storage),
             triangle_count,
@@ -113,6 +122,12 @@ impl Geometry {
                 mapped_at_creation: false,
             }),
             realness: scene.instances.iter().map(|i| i.realness).collect(),
+            base_vertex: ranges.iter().map(|r| r.2).collect(),
+            vertex_ranges: scene
+                .instances
+                .iter()
+                .map(|i| (ranges[i.primitive].2 as usize, scene.primitives[i.primitive].positions.len()))
+                .collect(),
             object_boxes: scene
                 .instances
                 .iter()
@@ -121,6 +136,8 @@ impl Geometry {
             previous: current.clone(),
             current,
             moved: false,
+            deform_pending: false,
+            deformed: false,
             static_info,
         };
         geometry.previous = geometry.current.clone();
@@ -130,6 +147,18 @@ impl Geometry {
     /// Moves instance `index` (takes effect at the next frame).
     pub fn set_transform(&mut self, index: usize, world_from_object: Mat4) {
         self.current[index] = world_from_object;
+    }
+
+    /// First vertex and vertex count of instance `index`'s primitive in `vertices`.
+    pub fn vertex_range(&self, index: usize) -> (usize, usize) {
+        self.vertex_ranges[index]
+    }
+
+    /// Instance `index` was deformed: its vertices (in its object space) now span
+    /// `object_box` (takes effect at the next frame, which counts as moved).
+    pub fn set_deformed_box(&mut self, index: usize, object_box: (Vec3, Vec3)) {
+        self.object_boxes[index] = object_box;
+        self.deform_pending = true;
     }
 
     /// World-space bounding spheres (centre, radius) of the virtual instances, as they will
@@ -181,8 +210,14 @@ impl Geometry {
         if !gpu.is_empty() {
             queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&gpu));
         }
-        self.moved = self.current != self.previous;
+        self.deformed = std::mem::take(&mut self.deform_pending);
+        self.moved = self.current != self.previous || self.deformed;
         self.previous.clone_from(&self.current);
+    }
+
+    /// Whether this frame deforms vertices (a skinned or morphing instance changed pose).
+    pub fn deformed(&self) -> bool {
+        self.deformed
     }
 
     /// Whether an instance moved between the last two frames.

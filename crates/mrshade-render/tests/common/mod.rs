@@ -26,6 +26,8 @@ pub struct Setup {
     pub top_toml: String,
     /// Tables appended to the session file.
     pub extra_toml: String,
+    /// Models written beside the scene as `<name>.gltf` (for `[[insert]]` tables).
+    pub models: Vec<(String, GltfBuilder)>,
 }
 
 impl Setup {
@@ -45,6 +47,7 @@ impl Setup {
             probe_plus_x: None,
             top_toml: "method = \"direct\"\n".into(),
             extra_toml,
+            models: Vec::new(),
         }
     }
 
@@ -78,6 +81,9 @@ impl Setup {
         let dir = tempfile::tempdir().unwrap();
         let d = dir.path();
         self.gltf.write_gltf(d, "scene");
+        for (name, model) in &self.models {
+            model.write_gltf(d, name);
+        }
         write_png(&d.join("photo.png"), self.size.0, self.size.1, &self.photo);
         let mut toml = "scene = \"scene.gltf\"\nbackground = \"photo.png\"\nexposure = 1.0\n".to_string();
         toml += &self.top_toml;

@@ -5,7 +5,8 @@
 //! finite and as many as the interpolation needs (three per key for CUBICSPLINE), and no key
 //! rotation may be zero. The document pass (`document`) has checked the references (sampler,
 //! node, accessors), the paths and interpolations, and that no animated node has a matrix.
-//! Morph target `weights` channels are ignored, with one warning.
+//! Morph target `weights` channels (SCALAR float or normalised integers, one value per
+//! target of the node's mesh per key) animate the node's mesh weights.
 
 use super::{accessors, describe};
 use crate::budget::Budget;
@@ -18,7 +19,8 @@ use gltf::animation::Property;
 use gltf::animation::util::ReadOutputs;
 use std::collections::HashMap;
 
-/// Per glTF node, whether a translation, rotation or scale channel targets it.
+/// Per glTF node, whether a translation, rotation or scale channel targets it (weights move
+/// vertices, not the node).
 pub fn animated_nodes(document: &gltf::Document) -> Vec<bool> {
     let mut animated = vec![false; document.nodes().len()];
     for animation in document.animations() {
@@ -41,7 +43,6 @@ pub fn load_animations(
     budget: &mut Budget,
     scene: &mut Scene,
 ) -> Result<()> {
-    let mut ignored_weights: Option<(String, usize)> = None;
     for animation in document.animations() {
         let label = describe(Some(animation.index()), animation.name());
         let name = animation.name().map_or_else(|| format!("animation {}", animation.index()), str::to_string);
@@ -55,9 +56,15 @@ pub fn load_animations(
                 Property::Rotation => TargetPath::Rotation,
                 Property::Scale => TargetPath::Scale,
                 Property::MorphTargetWeights => {
-                    let first = format!("animation {label} channel {}", channel.index());
-                    ignored_weights.get_or_insert((first, 0)).1 += 1;
-                    continue;
+                    let targets = node.mesh().and_then(|m| m.primitives().map(|p| p.morph_targets().len()).max());
+                    match targets {
+                        Some(count) if count > 0 => TargetPath::Weights(count),
+                        _ => bail!(
+                            "animation {label} channel {}: it animates the morph weights of node {}, whose mesh has no morph targets",
+                            channel.index(),
+                            describe(Some(node.index()), node.name())
+                        ),
+                    }
                 }
             };
             let here = || {
@@ -87,14 +94,8 @@ pub fn load_animations(
                 1,
                 (std::mem::size_of::<Animation>() + name.len()) as u64,
             )?;
-            scene.animations.push(Animation { name, channels });
+            scene.animations.push(Animation { name, channels, time_offset: 0.0 });
         }
-    }
-    if let Some((first, count)) = ignored_weights {
-        scene.warnings.push(format!(
-            "{first}{}: morph target weights are not animated yet; ignored",
-            if count > 1 { format!(" and {} more channels", count - 1) } else { String::new() }
-        ));
     }
     Ok(())
 }
@@ -131,16 +132,33 @@ fn read_channel(
                 );
             }
         }
+        TargetPath::Weights(_) => {
+            let types = [DataType::F32, DataType::I8, DataType::U8, DataType::I16, DataType::U16];
+            accessors::check(&output, "sampler.output", Dimensions::Scalar, &types, buffers, budget)?;
+            if output.data_type() != DataType::F32 && !output.normalized() {
+                bail!(
+                    "sampler.output accessor {} holds {:?} integers that are not normalized (glTF allows float or normalized weights)",
+                    output.index(),
+                    output.data_type()
+                );
+            }
+            budget.charge("sampler.output (as 4-vectors)", output.count() as u64, 12)?;
+        }
     }
     let per_key = interpolation.values_per_key();
     let keys = input.count();
-    if keys.checked_mul(per_key) != Some(output.count()) {
+    let per_value = match path {
+        TargetPath::Weights(count) => count,
+        _ => 1,
+    };
+    if keys.checked_mul(per_key).and_then(|v| v.checked_mul(per_value)) != Some(output.count()) {
         bail!(
-            "sampler.output accessor {} has {} elements but sampler.input accessor {} has {keys} keys: {} needs {per_key} per key",
+            "sampler.output accessor {} has {} elements but sampler.input accessor {} has {keys} keys: {} needs {} per key",
             output.index(),
             output.count(),
             input.index(),
-            interpolation.name()
+            interpolation.name(),
+            per_key * per_value
         );
     }
 
@@ -150,9 +168,25 @@ fn read_channel(
     let values: Vec<Vec4> = match reader.read_outputs().context("sampler.output data out of range")? {
         ReadOutputs::Translations(v) | ReadOutputs::Scales(v) => v.map(|v| Vec3::from(v).extend(0.0)).collect(),
         ReadOutputs::Rotations(v) => v.into_f32().map(Vec4::from).collect(),
-        ReadOutputs::MorphTargetWeights(_) => bail!("sampler.output: morph target weights are not supported"),
+        ReadOutputs::MorphTargetWeights(w) => {
+            let flat: Vec<f32> = w.into_f32().collect();
+            if flat.len() != output.count() {
+                bail!("sampler data out of range (fewer elements than the accessors' counts)");
+            }
+            // Each value's weights as `ceil(count / 4)` 4-vectors, zero-padded.
+            let chunks = path.chunks();
+            let mut packed = Vec::with_capacity(flat.len().div_ceil(per_value) * chunks);
+            for value in flat.chunks(per_value) {
+                for c in 0..chunks {
+                    let at = |i: usize| value.get(4 * c + i).copied().unwrap_or(0.0);
+                    packed.push(Vec4::new(at(0), at(1), at(2), at(3)));
+                }
+            }
+            packed
+        }
     };
-    if times.len() != keys || values.len() != output.count() {
+    let expected = output.count() / per_value * path.chunks();
+    if times.len() != keys || values.len() != expected {
         bail!("sampler data out of range (fewer elements than the accessors' counts)");
     }
     if let Some(e) = values.iter().position(|v| !v.is_finite()) {

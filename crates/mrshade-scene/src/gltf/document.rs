@@ -6,7 +6,8 @@
 //! node graph. So, in order:
 //! 1. the GLB container is split strictly (its header length must be the file's);
 //! 2. the raw JSON is checked for what typed parsing would lose: `asset.version` and integers
-//!    that cannot be indices or counts;
+//!    that cannot be indices or counts; then for required extensions mrshade lacks, and what
+//!    glTF leaves optional but the dependency requires (a scene's `nodes`) is filled in;
 //! 3. the references the dependency's validation dereferences unchecked are checked, and
 //!    what it unwraps (animation paths and interpolations, camera projections);
 //! 4. the dependency's structural validation runs;
@@ -32,9 +33,15 @@ pub fn parse(bytes: &[u8]) -> Result<Parsed> {
         bail!("the file is empty");
     }
     let (json, blob) = if bytes.starts_with(b"glTF") { split_glb(bytes)? } else { (bytes, None) };
-    let value: Value = serde_json::from_slice(json).context("not valid glTF 2.0 (the JSON does not parse)")?;
+    let mut value: Value = serde_json::from_slice(json).context("not valid glTF 2.0 (the JSON does not parse)")?;
     check_raw(&value)?;
-    let root: gltf::json::Root = serde_json::from_slice(json).context("not valid glTF 2.0")?;
+    super::extensions::check_required(&value)?;
+    // Parsed from the text where nothing was filled in: its errors name line and column.
+    let root: gltf::json::Root = if fill_optional(&mut value) {
+        serde_json::from_value(value).context("not valid glTF 2.0")?
+    } else {
+        serde_json::from_slice(json).context("not valid glTF 2.0")?
+    };
     check_unchecked_references(&root)?;
     validate(&root)?;
     check_forest(&root)?;
@@ -78,6 +85,21 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>)> {
         }
         _ => bail!("the first GLB chunk is not the JSON chunk"),
     }
+}
+
+/// Fills in what glTF 2.0 makes optional but the `gltf` crate's types require: a scene's
+/// `nodes` (a scene may be empty). Returns whether it filled anything in.
+fn fill_optional(value: &mut Value) -> bool {
+    let mut filled = false;
+    if let Some(scenes) = value.get_mut("scenes").and_then(Value::as_array_mut) {
+        for scene in scenes.iter_mut().filter_map(Value::as_object_mut) {
+            if !scene.contains_key("nodes") {
+                scene.insert("nodes".into(), Value::Array(Vec::new()));
+                filled = true;
+            }
+        }
+    }
+    filled
 }
 
 /// What typed parsing would silently lose.

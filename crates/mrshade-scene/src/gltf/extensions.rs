@@ -13,10 +13,13 @@ pub const SUPPORTED_EXTENSIONS: &[&str] = &[
     "KHR_materials_emissive_strength",
 ];
 
-/// Checks `extensionsRequired` and returns warnings for unsupported `extensionsUsed`.
-pub fn check(document: &gltf::Document) -> Result<Vec<String>> {
-    let unsupported_required: Vec<&str> =
-        document.extensions_required().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)).collect();
+/// Checks the raw document's `extensionsRequired`, before anything else: a file that needs
+/// an extension (Draco compression moves its geometry out of the accessors) fails structural
+/// checks without it, and the extension is the reason to tell.
+pub fn check_required(document: &serde_json::Value) -> Result<()> {
+    let required = document.get("extensionsRequired").and_then(serde_json::Value::as_array);
+    let names = required.into_iter().flatten().filter_map(serde_json::Value::as_str);
+    let unsupported_required: Vec<&str> = names.filter(|e| !SUPPORTED_EXTENSIONS.contains(e)).collect();
     if !unsupported_required.is_empty() {
         bail!(
             "the file requires {}, which mrshade cannot honour (supported: {})",
@@ -24,9 +27,14 @@ pub fn check(document: &gltf::Document) -> Result<Vec<String>> {
             SUPPORTED_EXTENSIONS.join(", ")
         );
     }
-    Ok(document
+    Ok(())
+}
+
+/// Warnings for the unsupported extensions of `extensionsUsed`.
+pub fn warnings(document: &gltf::Document) -> Vec<String> {
+    document
         .extensions_used()
         .filter(|e| !SUPPORTED_EXTENSIONS.contains(e))
         .map(|e| format!("extension {e} is not supported and is ignored"))
-        .collect())
+        .collect()
 }

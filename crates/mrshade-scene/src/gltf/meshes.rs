@@ -1,7 +1,9 @@
-//! Mesh primitives: checked attribute reads, triangle assembly, flat normals when missing.
+//! Mesh primitives: checked attribute reads, triangle assembly, flat normals when missing,
+//! skinning attributes (`JOINTS_0`, `WEIGHTS_0`) and morph targets.
 
 use super::{accessors, describe};
 use crate::budget::Budget;
+use crate::model::{MorphTarget, VertexSkin};
 use crate::{Primitive, Scene};
 use anyhow::{Context, Result, bail};
 use glam::{Vec2, Vec3};
@@ -125,7 +127,10 @@ fn read_primitive(
         bail!("has no triangles");
     }
 
-    let mut p = Primitive { name: name.to_string(), positions, normals: Vec::new(), uvs, indices, material };
+    let skin = read_skin(prim, &reader, positions.len(), buffers, budget)?;
+    let targets = read_targets(prim, &reader, positions.len(), buffers, budget)?;
+    let mut p =
+        Primitive { name: name.to_string(), positions, normals: Vec::new(), uvs, indices, material, skin, targets };
     match normals {
         Some(n) => p.normals = n,
         None => {
@@ -135,6 +140,91 @@ fn read_primitive(
         }
     }
     Ok(Some(p))
+}
+
+/// `JOINTS_0` and `WEIGHTS_0` (glTF 2.0 §3.7.3.1), both or neither; the weights of every
+/// vertex must sum to one (within 1 %, then renormalised: exporters round). Joint indices are
+/// checked against the skin when a node uses the mesh.
+fn read_skin<'a, 's, F>(
+    prim: &gltf::Primitive,
+    reader: &gltf::mesh::Reader<'a, 's, F>,
+    count: usize,
+    buffers: &[Vec<u8>],
+    budget: &mut Budget,
+) -> Result<Vec<VertexSkin>>
+where
+    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+{
+    let (joints, weights) = (prim.get(&gltf::Semantic::Joints(0)), prim.get(&gltf::Semantic::Weights(0)));
+    let (joints_acc, weights_acc) = match (joints, weights) {
+        (None, None) => return Ok(Vec::new()),
+        (Some(j), Some(w)) => (j, w),
+        (Some(_), None) => bail!("JOINTS_0 without WEIGHTS_0"),
+        (None, Some(_)) => bail!("WEIGHTS_0 without JOINTS_0"),
+    };
+    accessors::check(&joints_acc, "JOINTS_0", Dimensions::Vec4, &[DataType::U8, DataType::U16], buffers, budget)?;
+    let weight_types = [DataType::F32, DataType::U8, DataType::U16];
+    accessors::check(&weights_acc, "WEIGHTS_0", Dimensions::Vec4, &weight_types, buffers, budget)?;
+    if weights_acc.data_type() != DataType::F32 && !weights_acc.normalized() {
+        bail!("WEIGHTS_0 accessor {} holds integers that are not normalized", weights_acc.index());
+    }
+    check_count(joints_acc.count(), count, "JOINTS_0")?;
+    check_count(weights_acc.count(), count, "WEIGHTS_0")?;
+    let joints: Vec<[u16; 4]> = reader.read_joints(0).context("JOINTS_0 data out of range")?.into_u16().collect();
+    let weights: Vec<[f32; 4]> = reader.read_weights(0).context("WEIGHTS_0 data out of range")?.into_f32().collect();
+    if joints.len() != count || weights.len() != count {
+        bail!("JOINTS_0/WEIGHTS_0 data out of range (fewer elements than the accessors' counts)");
+    }
+    let mut skin = Vec::with_capacity(count);
+    for (v, (joints, weights)) in joints.into_iter().zip(weights).enumerate() {
+        if weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
+            bail!("WEIGHTS_0 accessor {}: vertex {v} has a weight that is negative or not finite", weights_acc.index());
+        }
+        let sum: f32 = weights.iter().sum();
+        if (sum - 1.0).abs() > 0.01 {
+            bail!(
+                "WEIGHTS_0 accessor {}: the weights of vertex {v} sum to {sum}, not 1 (glTF 2.0 §3.7.3.1)",
+                weights_acc.index()
+            );
+        }
+        skin.push(VertexSkin { joints, weights: weights.map(|w| w / sum) });
+    }
+    Ok(skin)
+}
+
+/// Morph targets (glTF 2.0 §3.7.2.2): POSITION and NORMAL displacements, float VEC3, as many
+/// as the primitive's vertices (TANGENT displacements are not used).
+fn read_targets<'a, 's, F>(
+    prim: &gltf::Primitive,
+    reader: &gltf::mesh::Reader<'a, 's, F>,
+    count: usize,
+    buffers: &[Vec<u8>],
+    budget: &mut Budget,
+) -> Result<Vec<MorphTarget>>
+where
+    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+{
+    let mut targets = Vec::new();
+    for (t, (target, data)) in prim.morph_targets().zip(reader.read_morph_targets()).enumerate() {
+        let what = |attr: &str| format!("morph target {t} {attr}");
+        let mut read = |accessor: Option<gltf::Accessor>, values: Option<gltf::mesh::util::ReadPositions<'s>>, attr| {
+            let (Some(accessor), Some(values)) = (accessor, values) else { return Ok(Vec::new()) };
+            accessors::check(&accessor, &what(attr), Dimensions::Vec3, &[DataType::F32], buffers, budget)?;
+            check_count(accessor.count(), count, &what(attr))?;
+            let v: Vec<Vec3> = values.map(Vec3::from).collect();
+            if v.len() != count || v.iter().any(|d| !d.is_finite()) {
+                bail!("{}: out of range or holds NaN or infinite values", what(attr));
+            }
+            Ok::<_, anyhow::Error>(v)
+        };
+        let positions = read(target.positions(), data.0, "POSITION")?;
+        let normals = read(target.normals(), data.1, "NORMAL")?;
+        targets.push(MorphTarget {
+            positions: if positions.is_empty() { vec![Vec3::ZERO; count] } else { positions },
+            normals,
+        });
+    }
+    Ok(targets)
 }
 
 /// glTF 2.0 §3.6.2.4: POSITION's `min` and `max` MUST bound its data. A file whose bounds do
@@ -175,24 +265,31 @@ fn triangle_list(mode: Mode, idx: &[u32]) -> Vec<u32> {
 }
 
 /// The glTF spec: "When normals are not specified, client implementations MUST calculate
-/// flat normals". Every triangle gets its own three vertices and its face normal.
+/// flat normals". Every triangle gets its own three vertices (with their skinning and morph
+/// displacements) and its face normal.
 fn make_flat_normals(p: &mut Primitive) {
-    let mut positions = Vec::with_capacity(p.indices.len());
-    let mut normals = Vec::with_capacity(p.indices.len());
-    let mut uvs = Vec::with_capacity(p.indices.len());
-    for tri in p.indices.chunks_exact(3) {
-        let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| i as usize);
-        let n = (p.positions[b] - p.positions[a]).cross(p.positions[c] - p.positions[a]).normalize_or(Vec3::Y);
-        for i in [a, b, c] {
-            positions.push(p.positions[i]);
-            uvs.push(p.uvs[i]);
-            normals.push(n);
-        }
+    let corners: Vec<usize> = p.indices.iter().map(|&i| i as usize).collect();
+    let pick =
+        |v: &[Vec3]| -> Vec<Vec3> { if v.is_empty() { Vec::new() } else { corners.iter().map(|&i| v[i]).collect() } };
+    let normals = p
+        .indices
+        .chunks_exact(3)
+        .flat_map(|tri| {
+            let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| p.positions[i as usize]);
+            [(b - a).cross(c - a).normalize_or(Vec3::Y); 3]
+        })
+        .collect();
+    p.uvs = corners.iter().map(|&i| p.uvs[i]).collect();
+    if !p.skin.is_empty() {
+        p.skin = corners.iter().map(|&i| p.skin[i]).collect();
     }
-    p.indices = (0..positions.len() as u32).collect();
-    p.positions = positions;
+    for target in &mut p.targets {
+        target.positions = pick(&target.positions);
+        target.normals.clear(); // flat normals are not morphed
+    }
+    p.positions = pick(&p.positions);
     p.normals = normals;
-    p.uvs = uvs;
+    p.indices = (0..corners.len() as u32).collect();
 }
 
 #[cfg(test)]

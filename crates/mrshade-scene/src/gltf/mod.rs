@@ -13,6 +13,7 @@ mod extensions;
 mod materials;
 mod meshes;
 mod nodes;
+mod skins;
 
 pub use extensions::SUPPORTED_EXTENSIONS;
 
@@ -34,7 +35,7 @@ pub fn load_gltf_bytes(bytes: &[u8], folder: &AssetSource, limits: &Limits) -> R
     let mut budget = Budget::new(limits);
     let document::Parsed { document, blob } = document::parse(bytes)?;
     let mut scene = Scene::default();
-    scene.warnings.extend(extensions::check(&document)?);
+    scene.warnings.extend(extensions::warnings(&document));
     let buffers = buffers::load_buffers(&document, blob, folder, &mut budget)?;
 
     let mut textures = materials::TextureCache::default();
@@ -51,12 +52,8 @@ pub fn load_gltf_bytes(bytes: &[u8], folder: &AssetSource, limits: &Limits) -> R
     let mesh_primitives = meshes::load_meshes(&document, &buffers, default_material, &mut budget, &mut scene)?;
     let animated = animations::animated_nodes(&document);
     let scene_node_of = nodes::place_nodes(&document, &mesh_primitives, &animated, &mut budget, &mut scene)?;
+    skins::load_skins(&document, &buffers, &scene_node_of, &mut budget, &mut scene)?;
     animations::load_animations(&document, &buffers, &scene_node_of, &mut budget, &mut scene)?;
-    if document.skins().len() > 0 {
-        scene
-            .warnings
-            .push("skins are ignored: skinned meshes are rendered unskinned, where their nodes place them".into());
-    }
     // The poses at the ends of the animations must be usable (the start is what a still
     // renders); poses between keys are checked when they are sampled.
     if let Some((first, last)) = scene.time_range() {

@@ -34,7 +34,9 @@ pub fn place_nodes(
     let Some(root) = document.default_scene().or_else(|| document.scenes().next()) else {
         bail!("the file has no scene");
     };
-    let mut walk = Walk { mesh_primitives, animated, budget, scene, scene_node_of: vec![None; document.nodes().len()] };
+    let used = vec![false; scene.primitives.len()];
+    let mut walk =
+        Walk { mesh_primitives, animated, budget, scene, scene_node_of: vec![None; document.nodes().len()], used };
     for node in root.nodes() {
         let top = Parent { index: None, world_from_node: Mat4::IDENTITY, realness: Realness::Virtual, moving: false };
         walk.visit(&node, &top, 0)?;
@@ -58,6 +60,9 @@ struct Walk<'a> {
     budget: &'a mut Budget,
     scene: &'a mut Scene,
     scene_node_of: Vec<Option<usize>>,
+    /// Per loaded primitive, whether an instance uses it already: a skinned or morphing
+    /// primitive is deformed per instance, so a second instance gets its own copy.
+    used: Vec<bool>,
 }
 
 impl Walk<'_> {
@@ -79,19 +84,43 @@ impl Walk<'_> {
         self.scene_node_of[node.index()] = Some(index);
 
         if let Some(mesh) = node.mesh() {
-            for &primitive in &self.mesh_primitives[mesh.index()] {
-                if !moving && !is_invertible(world_from_node) {
+            let rest_weights = node.weights().or(mesh.weights()).unwrap_or(&[]);
+            if let Some(w) = rest_weights.iter().find(|w| !w.is_finite()) {
+                bail!("{}: morph weight {w} is not finite", here());
+            }
+            for &loaded in &self.mesh_primitives[mesh.index()] {
+                let skinned = node.skin().is_some() && !scene.primitives[loaded].skin.is_empty();
+                if !moving && !skinned && !is_invertible(world_from_node) {
                     scene.warnings.push(format!("{}: its world transform has a zero scale; not rendered", here()));
                     break;
                 }
+                let primitive = if scene.primitives[loaded].is_deformable() && self.used[loaded] {
+                    let copy = scene.primitives[loaded].clone();
+                    let bytes = (copy.positions.len() * (32 + 24 * copy.targets.len() + 24)) as u64;
+                    self.budget.charge(format!("{} (deformed per instance)", here()), 1, bytes)?;
+                    scene.primitives.push(copy);
+                    scene.primitives.len() - 1
+                } else {
+                    loaded
+                };
+                self.used[loaded] = true;
                 let p = &scene.primitives[primitive];
-                check_extent(p, bounding_box(&p.positions), world_from_node).with_context(here)?;
+                // A skinned mesh is placed by its joints, in world space (glTF 2.0 §3.7.3.3:
+                // the transform of its node is ignored).
+                let world_from_object = if skinned { Mat4::IDENTITY } else { world_from_node };
+                if !skinned {
+                    check_extent(p, bounding_box(&p.positions), world_from_node).with_context(here)?;
+                }
+                let mut morph_weights = rest_weights.to_vec();
+                morph_weights.resize(p.targets.len(), 0.0);
                 self.budget.charge(here(), 1, (std::mem::size_of::<Instance>() + name.len() + 8) as u64)?;
                 scene.instances.push(Instance {
                     node_name: name.clone(),
                     primitive,
-                    world_from_object: world_from_node,
+                    world_from_object,
                     realness,
+                    skin: node.skin().filter(|_| skinned).map(|s| s.index()),
+                    morph_weights,
                 });
                 scene.node_of.instances.push(index);
             }

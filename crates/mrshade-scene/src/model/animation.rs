@@ -16,10 +16,12 @@ pub struct Animation {
     pub name: String,
     /// Its channels that move nodes of the scene, in file order.
     pub channels: Vec<Channel>,
+    /// Seconds added to the scene's clock before its channels are sampled (an inserted
+    /// model's `time_offset`).
+    pub time_offset: f32,
 }
 
-/// The node property a channel animates (glTF `target.path`; morph target `weights` are not
-/// supported yet and never make a channel).
+/// The node property a channel animates (glTF `target.path`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TargetPath {
     /// The node's translation (xyz of the values).
@@ -28,6 +30,9 @@ pub enum TargetPath {
     Rotation,
     /// The node's scale (xyz of the values).
     Scale,
+    /// The morph-target weights of the node's mesh: this many, four per value (a key's
+    /// value is `ceil(count / 4)` consecutive values, the last padded with zeros).
+    Weights(usize),
 }
 
 impl TargetPath {
@@ -37,6 +42,15 @@ impl TargetPath {
             Self::Translation => "translation",
             Self::Rotation => "rotation",
             Self::Scale => "scale",
+            Self::Weights(_) => "weights",
+        }
+    }
+
+    /// Values (of four components) per key value: `ceil(count / 4)` for weights, else 1.
+    pub fn chunks(self) -> usize {
+        match self {
+            Self::Weights(count) => count.div_ceil(4).max(1),
+            _ => 1,
         }
     }
 }
@@ -92,16 +106,35 @@ impl Channel {
     /// (xyzw). A channel whose values do not match its times (only possible when built by
     /// hand) gives the rest-neutral value of its path rather than panicking.
     pub fn sample(&self, time: f32) -> Vec4 {
+        self.sample_chunk(time, 0)
+    }
+
+    /// Morph-target weights at `time` (for a [`TargetPath::Weights`] channel: its count of
+    /// them; otherwise the four components of [`Channel::sample`]).
+    pub fn sample_weights(&self, time: f32) -> Vec<f32> {
+        let (chunks, count) = match self.path {
+            TargetPath::Weights(count) => (self.path.chunks(), count),
+            _ => (1, 4),
+        };
+        let mut out: Vec<f32> = (0..chunks).flat_map(|c| self.sample_chunk(time, c).to_array()).collect();
+        out.truncate(count);
+        out
+    }
+
+    /// Component group `chunk` of the value at `time` (see [`TargetPath::Weights`]).
+    fn sample_chunk(&self, time: f32, chunk: usize) -> Vec4 {
         let per_key = self.interpolation.values_per_key();
+        let chunks = self.path.chunks();
         let n = self.times.len();
-        if n == 0 || self.values.len() != n * per_key {
+        if n == 0 || self.values.len() != n * per_key * chunks || chunk >= chunks {
             return match self.path {
-                TargetPath::Translation => Vec4::ZERO,
+                TargetPath::Translation | TargetPath::Weights(_) => Vec4::ZERO,
                 TargetPath::Rotation => Vec4::W,
                 TargetPath::Scale => Vec4::new(1.0, 1.0, 1.0, 0.0),
             };
         }
-        let vertex = |k: usize| self.values[k * per_key + per_key / 2];
+        let at = |slot: usize| self.values[slot * chunks + chunk];
+        let vertex = |k: usize| at(k * per_key + per_key / 2);
         let rotation = self.path == TargetPath::Rotation;
         let (k, raw) = if time.is_nan() || time <= self.times[0] {
             (0, vertex(0))
@@ -118,8 +151,8 @@ impl Channel {
                 Interpolation::Linear if rotation => slerp(vertex(k), vertex(k + 1), u),
                 Interpolation::Linear => vertex(k).lerp(vertex(k + 1), u),
                 Interpolation::CubicSpline => {
-                    let out_tangent = self.values[3 * k + 2];
-                    let in_tangent = self.values[3 * (k + 1)];
+                    let out_tangent = at(3 * k + 2);
+                    let in_tangent = at(3 * (k + 1));
                     hermite(vertex(k), out_tangent, vertex(k + 1), in_tangent, span, u)
                 }
             };

@@ -84,6 +84,22 @@ pub struct Material {
     pub double_sided: bool,
 }
 
+impl Material {
+    /// Moves its texture indices by `base` (its textures were appended after `base` others).
+    pub(crate) fn offset_textures(&mut self, base: usize) {
+        let slots = [
+            self.base_color_texture.as_mut(),
+            self.metallic_roughness_texture.as_mut(),
+            self.normal_texture.as_mut().map(|(t, _)| t),
+            self.occlusion_texture.as_mut().map(|(t, _)| t),
+            self.emissive_texture.as_mut(),
+        ];
+        for slot in slots.into_iter().flatten() {
+            slot.texture += base;
+        }
+    }
+}
+
 impl Default for Material {
     /// The glTF default material: white, fully rough dielectric.
     fn default() -> Self {

@@ -3,11 +3,15 @@
 //! time ([`Scene::pose_at`]). Built by `crate::gltf`, consumed by the renderers.
 
 mod animation;
+mod deform;
+mod insert;
 mod material;
 mod pose;
 
 pub(crate) use animation::unit_quaternion;
 pub use animation::{Animation, Channel, Interpolation, TargetPath};
+pub use deform::{Deformation, deform_vertices};
+pub use insert::{Placement, UNIT_TOLERANCE, checked_rotation, checked_scale, checked_translation};
 pub use material::{AlphaMode, Material, Texture, TextureRef};
 pub use pose::{MAX_WORLD_EXTENT, NodeLinks, SceneNode, ScenePose, Trs};
 pub(crate) use pose::{check_extent, check_finite, is_invertible, oriented};
@@ -30,6 +34,56 @@ pub struct Primitive {
     pub indices: Vec<u32>,
     /// Index into [`Scene::materials`].
     pub material: usize,
+    /// `JOINTS_0`/`WEIGHTS_0` per position (empty when the mesh is not skinned): joints are
+    /// indices into the instance's [`Skin::joints`], weights sum to one.
+    pub skin: Vec<VertexSkin>,
+    /// Morph targets (glTF 2.0 §3.7.2.2): displacements added with the instance's weights.
+    pub targets: Vec<MorphTarget>,
+}
+
+impl Primitive {
+    /// Whether skinning or morphing moves its vertices (per instance, per frame).
+    pub fn is_deformable(&self) -> bool {
+        !self.skin.is_empty() || !self.targets.is_empty()
+    }
+}
+
+/// The four joints and weights that move one vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VertexSkin {
+    /// Indices into the skin's joints.
+    pub joints: [u16; 4],
+    /// Their weights, summing to one.
+    pub weights: [f32; 4],
+}
+
+/// One morph target of a primitive: per-vertex displacements.
+#[derive(Clone, Debug, Default)]
+pub struct MorphTarget {
+    /// Position displacement per vertex (object space).
+    pub positions: Vec<Vec3>,
+    /// Normal displacement per vertex (empty when the target has none).
+    pub normals: Vec<Vec3>,
+}
+
+/// A glTF skin: the joints that move a skinned mesh and their inverse bind matrices.
+#[derive(Clone, Debug)]
+pub struct Skin {
+    /// The skin's name, or `skin N`.
+    pub name: String,
+    /// The joint nodes: indices into [`Scene::nodes`].
+    pub joints: Vec<usize>,
+    /// `joint_from_mesh_at_bind`, one per joint: finite and invertible.
+    pub inverse_bind: Vec<Mat4>,
+}
+
+impl Skin {
+    /// Moves the joint indices by `base` (the skin's scene was appended after `base` nodes).
+    pub(crate) fn offset_nodes(&mut self, base: usize) {
+        for j in &mut self.joints {
+            *j += base;
+        }
+    }
 }
 
 /// A primitive placed in the world by a node.
@@ -45,6 +99,11 @@ pub struct Instance {
     pub world_from_object: Mat4,
     /// Real proxy or inserted virtual object.
     pub realness: Realness,
+    /// The skin that deforms it (an index into [`Scene::skins`]), if its primitive is skinned.
+    pub skin: Option<usize>,
+    /// Morph-target weights in the rest pose (the node's or the mesh's `weights`, else zeros),
+    /// one per target of its primitive.
+    pub morph_weights: Vec<f32>,
 }
 
 /// The kind of a `KHR_lights_punctual` light.
@@ -136,6 +195,8 @@ pub struct Scene {
     pub nodes: Vec<SceneNode>,
     /// The node of each instance, light and camera.
     pub node_of: NodeLinks,
+    /// Skins of skinned instances.
+    pub skins: Vec<Skin>,
     /// Animations of node transforms; all play at once ([`Scene::pose_at`]).
     pub animations: Vec<Animation>,
     /// What the loader could not honour and skipped (unsupported extensions, …).
@@ -143,12 +204,16 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// World-space bounding box of all instances, or `None` for an empty scene.
+    /// World-space bounding box of all instances in the rest pose (skinned and morphing ones
+    /// deformed), or `None` for an empty scene.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let pose = self.rest_pose();
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for inst in &self.instances {
-            for &p in &self.primitives[inst.primitive].positions {
+        for (i, inst) in self.instances.iter().enumerate() {
+            let primitive = &self.primitives[inst.primitive];
+            let deformed = pose.deformations.get(i).filter(|d| !d.is_empty()).map(|d| deform_vertices(primitive, d).0);
+            for &p in deformed.as_deref().unwrap_or(&primitive.positions) {
                 let w = inst.world_from_object.transform_point3(p);
                 lo = lo.min(w);
                 hi = hi.max(w);

@@ -9,7 +9,7 @@
 //! lights must stay within [`MAX_WORLD_EXTENT`] metres of the origin.
 
 use super::animation::{Channel, TargetPath};
-use super::{Primitive, Scene};
+use super::{Deformation, Primitive, Scene, deform_vertices};
 use anyhow::{Context, Result, bail};
 use glam::{Mat3, Mat4, Quat, Vec3};
 use mrshade_core::math::{bounding_box, box_corners};
@@ -82,6 +82,9 @@ pub struct ScenePose {
     pub lights: Vec<Mat4>,
     /// `world_from_camera` of each camera ([`Scene::cameras`]): rigid (scale removed).
     pub cameras: Vec<Mat4>,
+    /// How each instance's vertices are moved (skin joint matrices, morph weights); empty
+    /// for a rigid instance, and empty altogether for a scene without any deformation.
+    pub deformations: Vec<Deformation>,
 }
 
 impl Scene {
@@ -92,8 +95,23 @@ impl Scene {
 
     /// The first and last key times (seconds) over all animations, or `None` without any.
     pub fn time_range(&self) -> Option<(f32, f32)> {
-        let ranges = self.animations.iter().flat_map(|a| &a.channels).filter_map(Channel::time_range);
+        let ranges = self.animations.iter().flat_map(|a| {
+            a.channels.iter().filter_map(Channel::time_range).map(|(t0, t1)| (t0 - a.time_offset, t1 - a.time_offset))
+        });
         ranges.reduce(|(a0, a1), (b0, b1)| (a0.min(b0), a1.max(b1)))
+    }
+
+    /// The rest pose: the loaded transforms, and the deformations of skinned and morphing
+    /// instances with their joints where the nodes place them and the rest morph weights
+    /// (what a still renders).
+    pub fn rest_pose(&self) -> ScenePose {
+        if !self.has_deformations() {
+            return self.loaded_pose();
+        }
+        let world: Vec<Mat4> = (0..self.nodes.len()).map(|i| self.rest_world_from_node(i)).collect();
+        let mut pose = self.loaded_pose();
+        pose.deformations = (0..self.instances.len()).map(|i| self.deformation_of(i, &world, None)).collect();
+        pose
     }
 
     /// World transforms of every instance, light and camera `time` seconds into the scene's
@@ -115,18 +133,28 @@ impl Scene {
     /// The cost is one matrix product per node and one sample per channel (a binary search
     /// over its keys), plus the bounds of the primitives of moving instances.
     pub fn pose_at(&self, time: f32) -> Result<ScenePose> {
+        self.pose_with(time, &[])
+    }
+
+    /// [`Scene::pose_at`] with the local transforms of some nodes replaced (`(node, trs)`,
+    /// node an index into [`Scene::nodes`]): an inserted model moved per frame by a live
+    /// stream's poses. An override wins over any animation of the node.
+    pub fn pose_with(&self, time: f32, overrides: &[(usize, Trs)]) -> Result<ScenePose> {
         if !time.is_finite() {
             bail!("animation time {time} is not finite");
         }
-        if !self.is_animated() {
-            return Ok(self.rest_pose());
+        let deforms = self.has_deformations();
+        if !self.is_animated() && overrides.is_empty() && !deforms {
+            return Ok(self.loaded_pose());
         }
         let n = self.nodes.len();
         // Per node: its animated TRS, if a channel targets it, and the animation that moves it
         // (its own last, or its nearest animated ancestor's), for messages.
         let mut animated: Vec<Option<Trs>> = vec![None; n];
+        let mut weights: Vec<Option<Vec<f32>>> = vec![None; n];
         let mut mover: Vec<Option<usize>> = vec![None; n];
         for (a, animation) in self.animations.iter().enumerate() {
+            let local_time = time + animation.time_offset;
             for (c, channel) in animation.channels.iter().enumerate() {
                 let Some(node) = self.nodes.get(channel.node) else {
                     bail!(
@@ -135,15 +163,29 @@ impl Scene {
                         channel.node
                     );
                 };
+                if let TargetPath::Weights(_) = channel.path {
+                    weights[channel.node] = Some(channel.sample_weights(local_time));
+                    continue;
+                }
                 let trs = animated[channel.node].get_or_insert(node.rest);
-                let value = channel.sample(time);
+                let value = channel.sample(local_time);
                 match channel.path {
                     TargetPath::Translation => trs.translation = value.truncate(),
                     TargetPath::Rotation => trs.rotation = Quat::from_vec4(value),
                     TargetPath::Scale => trs.scale = value.truncate(),
+                    TargetPath::Weights(_) => {}
                 }
                 mover[channel.node] = Some(a);
             }
+        }
+        // Overrides are named like an animation in messages: "the stream's poses".
+        let overridden = self.animations.len();
+        for &(node, trs) in overrides {
+            if node >= n {
+                bail!("a pose override names node {node}, but the scene has {n} nodes");
+            }
+            animated[node] = Some(trs);
+            mover[node] = Some(overridden);
         }
         let mut world: Vec<Mat4> = Vec::with_capacity(n);
         for (i, node) in self.nodes.iter().enumerate() {
@@ -160,7 +202,11 @@ impl Scene {
         }
 
         let at = |node: usize| {
-            let animation = mover[node].map_or("", |a| self.animations[a].name.as_str());
+            let animation = match mover[node] {
+                Some(a) if a == overridden => "the stream's poses",
+                Some(a) => self.animations[a].name.as_str(),
+                None => "",
+            };
             format!(
                 "node '{}' at t = {time} s (animation '{}')",
                 printable(&self.nodes[node].name),
@@ -171,9 +217,12 @@ impl Scene {
         let moving =
             |links: &[usize], i: usize| links.get(i).copied().filter(|&node| node < n && mover[node].is_some());
         let mut bounds = vec![None; self.primitives.len()];
-        let mut pose = self.rest_pose();
+        let mut pose = self.loaded_pose();
         for (i, instance) in self.instances.iter().enumerate() {
             let Some(node) = moving(&self.node_of.instances, i) else { continue };
+            if instance.skin.is_some() {
+                continue; // skinned in world space: its joints place it
+            }
             let world_from_object = world[node];
             check_finite(world_from_object).with_context(|| at(node))?;
             if let Some(primitive) = self.primitives.get(instance.primitive) {
@@ -181,6 +230,25 @@ impl Scene {
                 check_extent(primitive, b, world_from_object).with_context(|| at(node))?;
             }
             pose.instances[i] = world_from_object;
+        }
+        if deforms {
+            pose.deformations = (0..self.instances.len())
+                .map(|i| {
+                    let node = self.node_of.instances.get(i).copied();
+                    let node_weights = node.and_then(|node| weights.get(node)?.as_deref());
+                    self.deformation_of(i, &world, node_weights)
+                })
+                .collect();
+            for (i, deformation) in pose.deformations.iter().enumerate() {
+                if deformation.is_empty() {
+                    continue;
+                }
+                let primitive = &self.primitives[self.instances[i].primitive];
+                let (positions, _) = deform_vertices(primitive, deformation);
+                let node = self.node_of.instances.get(i).copied().filter(|&node| node < n);
+                check_extent(primitive, bounding_box(&positions), pose.instances[i])
+                    .with_context(|| node.map_or_else(|| format!("instance {i} at t = {time} s"), at))?;
+            }
         }
         for (i, light) in pose.lights.iter_mut().enumerate() {
             if let Some(node) = moving(&self.node_of.lights, i) {
@@ -196,11 +264,12 @@ impl Scene {
     }
 
     /// The loaded transforms.
-    fn rest_pose(&self) -> ScenePose {
+    fn loaded_pose(&self) -> ScenePose {
         ScenePose {
             instances: self.instances.iter().map(|i| i.world_from_object).collect(),
             lights: self.lights.iter().map(|l| l.world_from_light).collect(),
             cameras: self.cameras.iter().map(|c| c.world_from_camera).collect(),
+            deformations: Vec::new(),
         }
     }
 }

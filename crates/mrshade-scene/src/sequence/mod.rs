@@ -35,7 +35,9 @@ use mrshade_core::HdrImage;
 use mrshade_core::camera::Intrinsics;
 use mrshade_core::settings::Limits;
 use mrshade_core::text::printable;
-use parse::{ANGLE_X, ANGLE_Y, CX, CY, DISTORTION, FL_X, FL_Y, H, Keys, NUMBER_KEYS, RawMatrix, RawObject, W, parse};
+use parse::{
+    ANGLE_X, ANGLE_Y, CX, CY, DISTORTION, FL_X, FL_Y, H, Keys, NUMBER_KEYS, RawMatrix, RawObject, W, parse, parse_frame,
+};
 use std::collections::HashMap;
 use std::fmt;
 use std::path::Path;
@@ -164,6 +166,23 @@ pub fn check_fps(fps: f32) -> Result<()> {
         bail!("field `sequence.fps`: must be a number of frames per second above 0 and at most {MAX_FPS}, got {fps}");
     }
     Ok(())
+}
+
+/// A camera given as one frame of a `transforms.json` gives it, on its own: a JSON object with
+/// an optional `transform_matrix` (checked as a file's: rigid, OpenGL axes, camera-to-world)
+/// and optional intrinsics (`fl_x`, `fl_y`, `cx`, `cy`, `w`, `h` or `camera_angle_x` [+
+/// `camera_angle_y`]; `w × h` defaults to `size` and is scaled to it when its aspect ratio is
+/// within 1 %). Other keys are skipped unread. This is how `mrshade stream --poses` reads its
+/// pose lines. Returns `world_from_camera` and the intrinsics in pixels of `size`, each `None`
+/// when not given.
+pub fn camera_from_json(json: &[u8], size: (u32, u32)) -> Result<(Option<Mat4>, Option<Intrinsics>)> {
+    let raw = parse_frame(json)?;
+    check_pinhole(&raw.keys)?;
+    let world_from_camera = raw.matrix.as_ref().map(pose).transpose().map_err(anyhow::Error::msg)?;
+    let given = [FL_X, FL_Y, CX, CY, W, H, ANGLE_X, ANGLE_Y].iter().any(|&k| raw.keys.numbers[k].is_some());
+    let intrinsics =
+        given.then(|| intrinsics(&Keys::default(), &raw.keys, size)).transpose().map_err(anyhow::Error::msg)?;
+    Ok((world_from_camera, intrinsics))
 }
 
 /// `{file}: {error}` on one line, control characters escaped.

@@ -56,10 +56,20 @@ struct Where {
 
 /// Parses the file, at most `max_frames` frames.
 pub(super) fn parse(bytes: &[u8], max_frames: usize) -> Result<RawObject> {
+    parse_object(bytes, Some(max_frames))
+}
+
+/// Parses one frame object on its own (`transform_matrix` and the camera keys).
+pub(super) fn parse_frame(bytes: &[u8]) -> Result<RawObject> {
+    parse_object(bytes, None)
+}
+
+/// The top level (`max_frames` given) or one frame.
+fn parse_object(bytes: &[u8], max_frames: Option<usize>) -> Result<RawObject> {
     let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     let at = RefCell::new(Where::default());
     let mut de = serde_json::Deserializer::from_slice(bytes);
-    let parsed = ObjectSeed { at: &at, max_frames: Some(max_frames) }.deserialize(&mut de).and_then(|raw| {
+    let parsed = ObjectSeed { at: &at, max_frames }.deserialize(&mut de).and_then(|raw| {
         de.end()?;
         Ok(raw)
     });

@@ -15,7 +15,7 @@ pub(super) struct SessionFile {
     pub(super) background: Option<String>,
     #[serde(default = "one")]
     pub(super) exposure: f32,
-    pub(super) camera: Option<String>,
+    pub(super) camera: Option<toml::Value>,
     #[serde(default)]
     pub(super) method: Method,
     pub(super) environment: Option<EnvironmentFile>,
@@ -32,6 +32,8 @@ pub(super) struct SessionFile {
     #[serde(default)]
     pub(super) limits: Limits,
     pub(super) sequence: Option<SequenceFile>,
+    #[serde(default, rename = "insert")]
+    pub(super) inserts: Vec<super::insert::InsertFile>,
 }
 
 #[derive(Deserialize)]

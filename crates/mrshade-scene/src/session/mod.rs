@@ -6,7 +6,8 @@
 //! background = "background.png" # the camera photo: PNG/JPEG (sRGB) or EXR (linear)
 //!                               # (or, instead, [sequence] transforms)
 //! exposure = 0.96               # linear camera value = exposure × scene radiance
-//! camera = "camera"             # optional: glTF camera by node or camera name (default: the first)
+//! camera = "camera"             # optional: glTF camera by node or camera name (default: the first),
+//!                               # or a [camera] table placing one (see `camera`)
 //! method = "dir"                # optional: light-transport method ("dir" or "direct")
 //! [environment]                 # optional: the real light probe
 //! image = "environment.exr"     # equirectangular EXR or Radiance HDR
@@ -26,6 +27,8 @@
 //! fps = 30                      # frames per second (default 30): frame k is at time k / fps
 //! samples = 32                  # jittered renderer frames averaged per footage frame (1 = real time)
 //! # frames = 48                 # instead of `transforms`, with `background`: 48 frames of that photo
+//! [[insert]]                    # optional, repeated: a model from its own glTF file (see `insert`)
+//! model = "Duck.glb"
 //! ```
 //! Parsing is strict: an unknown key, a wrong type, a missing file, or a photo whose aspect
 //! ratio does not match the camera is an error naming the file and the field.
@@ -35,11 +38,17 @@
 //! its aspect ratio is not checked. `background` holds frame 0's photo and the output size
 //! defaults to its size; [`Session::photo_at`] and [`Session::view_at`] give any frame's.
 
+mod camera;
 mod file;
+mod insert;
 mod output;
+
+pub use camera::SESSION_CAMERA;
+pub use insert::Insert;
 
 pub use output::{MAX_OUTPUT_SIDE, MIN_OUTPUT_SIDE, OutputSize};
 
+use camera::{CameraChoice, parse_camera, pick_camera};
 use file::{SessionFile, parse};
 use output::{check_aspect, output_size};
 
@@ -121,6 +130,8 @@ pub struct Session {
     pub warnings: Vec<String>,
     /// The frames of a sequence (`[sequence]`); `None` for a still.
     pub sequence: Option<Sequence>,
+    /// The models of `[[insert]]`, in order.
+    pub inserts: Vec<Insert>,
 }
 
 impl Session {
@@ -144,6 +155,21 @@ impl Session {
     pub fn load_from(source: &AssetSource, rel: &str, overrides: &SessionOverrides) -> Result<Session> {
         let origin = source.display(rel);
         load(source, rel, overrides, origin.clone()).with_context(|| format!("session {origin}"))
+    }
+
+    /// The node of the insert named `name`.
+    pub fn insert_node(&self, name: &str) -> Option<usize> {
+        self.inserts.iter().find(|i| i.name == name).map(|i| i.node)
+    }
+
+    /// `view` with the render camera where `pose` puts it (an animation moving its node),
+    /// unless the sequence's own poses place the camera (a `transforms` session).
+    pub fn animated_view(&self, mut view: CameraView, pose: &crate::ScenePose) -> CameraView {
+        let from_transforms = self.sequence.as_ref().is_some_and(|s| s.from_transforms);
+        if !from_transforms && let Some(&m) = pose.cameras.get(self.camera) {
+            view.world_from_camera = m;
+        }
+        view
     }
 
     /// Frames to render: the sequence's, or 1 for a still.
@@ -224,6 +250,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
     settings.validate().map_err(anyhow::Error::msg)?;
 
     let mut scene = load_gltf(&folder, &file.scene, &limits).with_context(|| field("scene"))?;
+    let inserts = insert::load_inserts(&mut scene, &file.inserts, &folder, &limits)?;
     if scene.lights.len() > limits.lights as usize {
         bail!(
             "{}: the scene has {} lights, more than `limits.lights` = {} (each needs up to 12 shadow-map layers on \
@@ -240,12 +267,18 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         None => None,
     };
     // The poses give a `transforms` session its cameras; a glTF without one gets frame 0's.
-    let camera = match sequence.as_ref().and_then(|s| s.frames.first()) {
-        Some(first) if scene.cameras.is_empty() && file.camera.is_none() => {
+    let choice = file.camera.as_ref().map(parse_camera).transpose().with_context(|| field("camera"))?;
+    let camera = match (choice, sequence.as_ref().and_then(|s| s.frames.first())) {
+        (Some(CameraChoice::Placed(placed)), _) => {
+            scene.cameras.push(placed);
+            scene.cameras.len() - 1
+        }
+        (None, Some(first)) if scene.cameras.is_empty() => {
             scene.cameras.push(sequence_camera(first));
             scene.cameras.len() - 1
         }
-        _ => pick_camera(&scene, file.camera.as_deref()).with_context(|| field("camera"))?,
+        (Some(CameraChoice::Named(name)), _) => pick_camera(&scene, Some(&name)).with_context(|| field("camera"))?,
+        (None, _) => pick_camera(&scene, None).with_context(|| field("camera"))?,
     };
     // A weight for a source that does not exist (a misspelt light name) would be ignored.
     let sources: Vec<&str> =
@@ -354,6 +387,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         limits,
         warnings,
         sequence,
+        inserts,
     })
 }
 
@@ -421,18 +455,5 @@ fn readable_folder(source: &AssetSource, rel: &str, limits: &Limits, overrides: 
             AssetSource::dir_with_policy(&folder, ReadPolicy::new(&roots, limits.file_bytes()))
         }
         embedded => embedded,
-    }
-}
-
-fn pick_camera(scene: &Scene, name: Option<&str>) -> Result<usize> {
-    if scene.cameras.is_empty() {
-        bail!("the glTF has no perspective camera; add a camera node");
-    }
-    match name {
-        None => Ok(0),
-        Some(name) => scene.cameras.iter().position(|c| c.is_named(name)).with_context(|| {
-            let known: Vec<_> = scene.cameras.iter().map(|c| c.node_name.as_str()).collect();
-            format!("no camera named '{name}' (cameras: {})", known.join(", "))
-        }),
     }
 }

@@ -23,7 +23,7 @@ impl Stats {
     fn of(samples: &[f64]) -> Self {
         let mut s = samples.to_vec();
         s.sort_by(f64::total_cmp);
-        let pick = |q: f64| s[((s.len() as f64 - 1.0) * q).round() as usize];
+        let pick = |q: f64| super::quantile(&s, q);
         Stats {
             mean_ms: s.iter().sum::<f64>() / s.len() as f64,
             p95_ms: pick(0.95),
@@ -158,9 +158,7 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         for (label, ms) in gaps {
             per_gap.entry(label.to_string()).or_default().push(ms);
         }
-        let start = f.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-        let end = f.iter().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
-        frame_ms.push((end - start) * 1e3);
+        frame_ms.extend(mrshade_gpu::timing::frame_ms(f));
         let mut sums: BTreeMap<&str, f64> = BTreeMap::new();
         for (label, s, e) in f {
             if !pass_order.contains(label) {

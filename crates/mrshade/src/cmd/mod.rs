@@ -7,6 +7,7 @@ mod info;
 mod reference;
 mod render;
 mod sequence;
+mod stream;
 
 use crate::args::{Cli, Command, SessionArgs};
 use anyhow::Result;
@@ -67,6 +68,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Compare(args) => compare::compare(&args),
         Command::Reference(args) => reference::reference(&args, log),
         Command::Eval(args) => eval::eval(&args, &gpu, log),
+        Command::Stream(args) => stream::stream(&args, &gpu, log),
     }
 }
 
@@ -98,6 +100,11 @@ pub fn load_session(args: &SessionArgs, log: Log) -> Result<Session> {
         log.warn(w);
     }
     Ok(session)
+}
+
+/// The `q` quantile (0 to 1) of `sorted` (ascending, not empty): the nearest sample's value.
+pub fn quantile(sorted: &[f64], q: f64) -> f64 {
+    sorted[((sorted.len() as f64 - 1.0) * q).round() as usize]
 }
 
 /// Opens the GPU, printing which adapter was chosen.

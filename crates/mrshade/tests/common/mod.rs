@@ -2,18 +2,54 @@
 //! sequence of `assets/sequence`.
 #![allow(dead_code, reason = "each test file uses a part")]
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+
+/// `mrshade args…`, its runtime folder in `runtime`.
+fn command(args: &[&str], runtime: &Path) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_mrshade"));
+    // Mesa's WSI complains on stderr when this is unset; keep stderr to our own lines.
+    command.args(args).env("XDG_RUNTIME_DIR", runtime);
+    command
+}
 
 /// Runs `mrshade args…`.
 pub fn mrshade(args: &[&str]) -> Output {
     let runtime = tempfile::tempdir().unwrap();
-    Command::new(env!("CARGO_BIN_EXE_mrshade"))
-        .args(args)
-        // Mesa's WSI complains on stderr when this is unset; keep stderr to our own lines.
-        .env("XDG_RUNTIME_DIR", runtime.path())
-        .output()
-        .expect("run mrshade")
+    command(args, runtime.path()).output().expect("run mrshade")
+}
+
+/// Runs `mrshade args…` with `input` on its standard input (written by a thread while it
+/// runs; a command that stops reading early is not an error here).
+pub fn mrshade_with_input(args: &[&str], input: Vec<u8>) -> Output {
+    piped(args, input, false)
+}
+
+/// [`mrshade_with_input`] with its standard output closed before it writes anything (a
+/// reader that went away).
+pub fn mrshade_into_closed_pipe(args: &[&str], input: Vec<u8>) -> Output {
+    piped(args, input, true)
+}
+
+fn piped(args: &[&str], input: Vec<u8>, close_stdout: bool) -> Output {
+    let runtime = tempfile::tempdir().unwrap();
+    let mut child = command(args, runtime.path())
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run mrshade");
+    if close_stdout {
+        drop(child.stdout.take());
+    }
+    let mut stdin = child.stdin.take().unwrap();
+    let feeder = std::thread::spawn(move || {
+        let _ = stdin.write_all(&input);
+    });
+    let output = child.wait_with_output().expect("wait for mrshade");
+    feeder.join().unwrap();
+    output
 }
 
 /// Its standard error.

@@ -18,7 +18,7 @@ pub mod vpl;
 
 pub use aovs::IsmDepths;
 pub(crate) use limits::{estimate, fit};
-pub use points::{GpuPoint, PointCloud};
+pub use points::{GpuPoint, PointAnchor, PointCloud};
 pub use probe_pyramid::ProbePyramid;
 
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs};
@@ -55,6 +55,8 @@ pub struct DirMethod {
     rendered: u32,
     /// Frames since anything in the scene moved.
     still_frames: u32,
+    /// Whether this frame's points on deformed instances must follow them.
+    follow_points: bool,
 }
 
 /// Builds every pass of the method (the registry's `build`).
@@ -80,7 +82,7 @@ impl DirMethod {
             settings.rsm_resolution,
             session.settings.shadows.resolution,
         );
-        let ism_resources = IsmResources::new(ctx, &session.scene, settings, center, radius);
+        let ism_resources = IsmResources::new(ctx, &session.scene, &scene.geometry, settings, center, radius);
         let vpl = VplPass::new(ctx, session, settings, scene, &rsm, &ism_resources, center, radius);
         let ism = IsmPass::new(ctx, &ism_resources, &scene.geometry, &vpl.vpls);
         let interleaved = IndirectLight::new(&ctx.device, "indirect/interleaved", internal_size);
@@ -97,7 +99,19 @@ impl DirMethod {
             &interleaved,
         );
         let filter = FilterPass::new(ctx, frame_uniforms, settings, session.exposure, gbuffer, &interleaved);
-        Self { rsm, ism_resources, vpl, ism, interleaved, indirect, filter, frame: 0, rendered: 0, still_frames: 0 }
+        Self {
+            rsm,
+            ism_resources,
+            vpl,
+            ism,
+            interleaved,
+            indirect,
+            filter,
+            frame: 0,
+            rendered: 0,
+            still_frames: 0,
+            follow_points: false,
+        }
     }
 
     /// Frames rendered so far.
@@ -116,6 +130,7 @@ impl LightTransport for DirMethod {
         // Light in the world changes when geometry or a light moves; a moving camera only
         // reprojects the history (the temporal step's disocclusion tests handle what it
         // newly sees).
+        self.follow_points = change.vertices_deformed;
         let light_changed = change.geometry_moved || change.moved_light_layers.is_some();
         self.still_frames = if light_changed || self.rendered == 0 { 0 } else { self.still_frames + 1 };
         let history = History {
@@ -129,6 +144,9 @@ impl LightTransport for DirMethod {
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         let parity = (self.frame % 2) as usize;
+        if std::mem::take(&mut self.follow_points) {
+            self.ism_resources.record_follow(rec);
+        }
         self.rsm.record(rec, rasterizer);
         self.vpl.record(rec, parity);
         self.ism.record(rec, &self.ism_resources, parity);

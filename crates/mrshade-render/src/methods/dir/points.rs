@@ -23,19 +23,42 @@ pub struct GpuPoint {
     pub material: u32,
 }
 
+/// Where a point lies on a skinned or morphing instance, so that it can follow the
+/// deformed surface: its triangle's corners (indices into the primitive's vertices) and the
+/// barycentric weights of corners 1 and 2. Mirrors `struct Anchor` in follow.wgsl once the
+/// corners are made global (`IsmResources`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct PointAnchor {
+    /// Index of the point in its cloud.
+    pub point: u32,
+    /// The triangle's corners.
+    pub corners: [u32; 3],
+    /// Barycentric weights of corners 1 and 2.
+    pub weights: [f32; 2],
+    /// Index of the instance (made the primitive's first vertex when uploaded).
+    pub instance: u32,
+    _pad: u32,
+}
+
 /// The points of one kind of surface.
 pub struct PointCloud {
     /// `count` points (empty when no surface of this kind exists).
     pub points: Vec<GpuPoint>,
+    /// Anchors of the points on deformable instances.
+    pub anchors: Vec<PointAnchor>,
     /// World-space surface area they sample, m².
     pub area: f32,
 }
 
 impl PointCloud {
     /// `count` points uniformly distributed over the world-space area of the instances of
-    /// `realness`, in blocks of `points_per_block` (one block per VPL), from a fixed seed
+    /// `realness` (skinned and morphing ones in their rest pose, with anchors to follow them), in blocks of `points_per_block` (one block per VPL), from a fixed seed
     /// (the same scene gives the same points).
     pub fn new(scene: &Scene, realness: Realness, count: usize, points_per_block: usize) -> Self {
+        // Deformable instances are sampled where the rest pose puts their vertices.
+        let posed = scene.has_deformations().then(|| scene.posed(&scene.rest_pose()));
+        let (source, scene) = (scene, posed.as_ref().unwrap_or(scene));
         // Every triangle of every instance of this kind, with its world-space area.
         let mut triangles: Vec<(usize, usize, f32)> = Vec::new();
         for (i, inst) in scene.instances.iter().enumerate().filter(|(_, i)| i.realness == realness) {
@@ -48,7 +71,7 @@ impl PointCloud {
         }
         let area: f32 = triangles.iter().map(|t| t.2).sum();
         if triangles.is_empty() || area <= 0.0 {
-            return Self { points: Vec::new(), area: 0.0 };
+            return Self { points: Vec::new(), anchors: Vec::new(), area: 0.0 };
         }
         let mut cdf = Vec::with_capacity(triangles.len());
         let mut sum = 0.0f64;
@@ -64,6 +87,7 @@ impl PointCloud {
         const GOLDEN: f64 = 0.618_033_988_749_894_9;
         let block = points_per_block.clamp(1, count.max(1));
         let mut points = Vec::with_capacity(count);
+        let mut anchors = Vec::new();
         while points.len() < count {
             let (shift_u, shift_v) = (rng.next_f64(), rng.next_f64());
             for j in 0..block.min(count - points.len()) {
@@ -82,6 +106,15 @@ impl PointCloud {
                 let lerp = |a: Vec3, b: Vec3, c: Vec3| a * (1.0 - w.x - w.y) + b * w.x + c * w.y;
                 let pos = lerp(prim.positions[idx[0]], prim.positions[idx[1]], prim.positions[idx[2]]);
                 let nrm = lerp(prim.normals[idx[0]], prim.normals[idx[1]], prim.normals[idx[2]]).normalize_or(Vec3::Y);
+                if source.primitives[source.instances[instance].primitive].is_deformable() {
+                    anchors.push(PointAnchor {
+                        point: points.len() as u32,
+                        corners: idx.map(|i| i as u32),
+                        weights: w.into(),
+                        instance: instance as u32,
+                        _pad: 0,
+                    });
+                }
                 points.push(GpuPoint {
                     position: pos.into(),
                     instance: instance as u32,
@@ -90,7 +123,7 @@ impl PointCloud {
                 });
             }
         }
-        Self { points, area }
+        Self { points, anchors, area }
     }
 }
 
@@ -135,6 +168,7 @@ mod tests {
             uvs: vec![Vec2::ZERO; 4],
             indices: vec![0, 2, 1, 0, 3, 2],
             material: 0,
+            ..Default::default()
         };
         let mut s = Scene { primitives: vec![quad], ..Default::default() };
         s.instances.push(Instance {
@@ -142,6 +176,8 @@ mod tests {
             primitive: 0,
             world_from_object: Mat4::IDENTITY,
             realness: Realness::Real,
+            skin: None,
+            morph_weights: Vec::new(),
         });
         s
     }
@@ -154,6 +190,8 @@ mod tests {
             primitive: 0,
             world_from_object: Mat4::from_scale(Vec3::splat(3.0_f32.sqrt())),
             realness: Realness::Virtual,
+            skin: None,
+            morph_weights: Vec::new(),
         });
         s
     }

@@ -3,9 +3,12 @@
 //! on either, so every VPL needs `V_r` and `V_v`). Inputs: the VPLs, the point clouds.
 //! Output: the atlases.
 
+mod follow;
+
 use crate::methods::dir::{GpuPoint, PointCloud};
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
+use follow::FollowPass;
 use glam::{UVec4, Vec4};
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::DirSettings;
@@ -53,11 +56,20 @@ pub struct IsmResources {
     pub atlas_real: wgpu::Buffer,
     /// ISM atlas of the virtual points.
     pub atlas_virtual: wgpu::Buffer,
+    /// Moves the points on skinned and morphing instances (real cloud, virtual cloud).
+    follow: [Option<FollowPass>; 2],
 }
 
 impl IsmResources {
     /// Builds the point clouds of `scene` and allocates the atlases.
-    pub fn new(ctx: &GpuContext, scene: &Scene, settings: &DirSettings, center: glam::Vec3, radius: f32) -> Self {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &Scene,
+        geometry: &Geometry,
+        settings: &DirSettings,
+        center: glam::Vec3,
+        radius: f32,
+    ) -> Self {
         let device = &ctx.device;
         let count = (settings.vpl_count * settings.points_per_vpl) as usize;
         let per_vpl = settings.points_per_vpl as usize;
@@ -81,9 +93,15 @@ impl IsmResources {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
                 contents: bytemuck::cast_slice(&pts),
-                usage: wgpu::BufferUsages::STORAGE,
+                // Written by `FollowPass`; read back by tests.
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             })
         };
+        let (points_real, points_virtual) = (points("ism/points_real", &real), points("ism/points_virtual", &virt));
+        let follow = [
+            FollowPass::new(ctx, "ism/follow_real", scene, geometry, &real.anchors, &points_real),
+            FollowPass::new(ctx, "ism/follow_virtual", scene, geometry, &virt.anchors, &points_virtual),
+        ];
         let atlas = |label: &str| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -99,8 +117,8 @@ impl IsmResources {
                 contents: bytemuck::bytes_of(&params),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             }),
-            points_real: points("ism/points_real", &real),
-            points_virtual: points("ism/points_virtual", &virt),
+            points_real,
+            points_virtual,
             real_count: real.points.len() as u32,
             virtual_count: virt.points.len() as u32,
             areas: (real.area, virt.area),
@@ -108,6 +126,15 @@ impl IsmResources {
             first_virtual_box: None,
             atlas_real: atlas("ism/atlas_real"),
             atlas_virtual: atlas("ism/atlas_virtual"),
+            follow,
+        }
+    }
+
+    /// Moves the points on deformed instances onto their surface (in frames whose vertices
+    /// the deformation pass moved).
+    pub fn record_follow(&self, rec: &mut Recorder) {
+        for pass in self.follow.iter().flatten() {
+            pass.record(rec);
         }
     }
 
