@@ -5,9 +5,10 @@
 //! method's temporal reuse carries over from frame to frame as it does in footage.
 //!
 //! A frame's photo is 8-bit sRGB RGB at the output size, decoded as a PNG photo is (the exact
-//! 8-bit table of [`srgb_u8_decode_table`], no exposure applied: the session's `exposure`
+//! 8-bit table of `srgb_u8_decode_table`, no exposure applied: the session's `exposure`
 //! relates photo values to radiance), and its composite is encoded to 8-bit sRGB as `mrshade
-//! render` writes a PNG ([`HdrImage::to_srgb8`]). A streamed frame is therefore the frame
+//! render` writes a PNG ([`mrshade_core::HdrImage::to_srgb8`]'s codes, computed on the GPU by
+//! the encode pass: the same thresholds, searched the same way). A streamed frame is therefore the frame
 //! rendered from a PNG of the same pixels with the same inputs.
 //!
 //! ```no_run
@@ -24,14 +25,12 @@
 //! ```
 
 use crate::frame::FrameInputs;
+use crate::passes::encode::EncodePass;
 use crate::passes::upload::PackedPhoto;
 use crate::renderer::Renderer;
-use crate::still::check_finite;
 use anyhow::{Context, Result, bail};
 use glam::{Mat4, Quat, Vec3};
-use mrshade_core::HdrImage;
 use mrshade_core::camera::Intrinsics;
-use mrshade_core::color::srgb_u8_decode_table;
 use mrshade_core::text::printable;
 use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::{flatten, frame_ms, profiler};
@@ -120,7 +119,8 @@ pub struct Stream {
     session: Session,
     renderer: Renderer,
     profiler: GpuProfiler,
-    decode: [f32; 256],
+    /// The composite to sRGB bytes on the GPU.
+    encode: EncodePass,
     /// Extra renderer frames the next frame gets first.
     settle: u32,
     /// The local transform of each insert node the stream has moved, as last applied.
@@ -133,8 +133,10 @@ impl Stream {
     pub fn new(ctx: &GpuContext, session: Session) -> Result<Self> {
         let renderer = Renderer::new(ctx, &session)?;
         let profiler = profiler(ctx, true)?;
-        let decode = srgb_u8_decode_table();
-        Ok(Self { session, renderer, profiler, decode, settle: 0, inserts: BTreeMap::new() })
+        let encode = ctx.checked("creating the stream's encoder", || {
+            Ok(EncodePass::new(ctx, &renderer.composite_targets.composite))
+        })?;
+        Ok(Self { session, renderer, profiler, encode, settle: 0, inserts: BTreeMap::new() })
     }
 
     /// The session streamed.
@@ -172,9 +174,7 @@ impl Stream {
         if frame.rgb.len() != self.frame_bytes() {
             bail!("a {w}×{h} RGB frame is {} bytes, this one is {}", self.frame_bytes(), frame.rgb.len());
         }
-        let table = &self.decode;
-        let pixels = frame.rgb.chunks_exact(3).map(|p| [0, 1, 2].map(|c| table[p[c] as usize])).collect();
-        let packed = PackedPhoto::new(&HdrImage { width: w, height: h, pixels }, (w, h));
+        let packed = PackedPhoto::from_srgb8(frame.rgb, (w, h));
         let mut warnings = Vec::new();
         let pose = self.scene_pose(frame, &mut warnings)?;
         let mut camera = self.renderer.session_camera();
@@ -202,9 +202,7 @@ impl Stream {
         while let Some(results) = self.profiler.process_finished_frame(ctx.queue.get_timestamp_period()) {
             gpu_ms = frame_ms(&flatten(&results));
         }
-        let composite = self.renderer.read_composite(ctx)?;
-        check_finite(&composite)?;
-        Ok(StreamOutput { rgb: composite.image.to_srgb8(), gpu_ms, warnings })
+        Ok(StreamOutput { rgb: self.encode.read(ctx)?, gpu_ms, warnings })
     }
 
     /// The scene posed at the frame's time with the inserts where the stream last put them,

@@ -1,8 +1,10 @@
 //! Tier 1 (no GPU): every composed shader validates with naga, and every struct shared by
 //! Rust and WGSL has the same size and member offsets on both sides.
 
+use mrshade_render::methods::dir::PointAnchor;
 use mrshade_render::methods::dir::{filter, indirect, ism, rsm, vpl};
-use mrshade_render::passes::{composite, direct, gbuffer};
+use mrshade_render::passes::deform::GpuRange;
+use mrshade_render::passes::{composite, deform, direct, encode, gbuffer};
 use mrshade_render::raster;
 use mrshade_render::scene_gpu::{GpuInstance, GpuLight, GpuMaterial};
 use mrshade_render::uniforms::FrameUniforms;
@@ -23,6 +25,9 @@ const MODULES: &[(&str, &str)] = &[
     ("indirect", indirect::SHADER),
     ("temporal", filter::TEMPORAL_SHADER),
     ("filter", filter::FILTER_SHADER),
+    ("deform", deform::SHADER),
+    ("ism/follow", ism::FOLLOW_SHADER),
+    ("encode", encode::SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -133,4 +138,39 @@ fn flag_constants_match_the_core_crate() {
     ] {
         assert!(source.contains(&format!("const {name}: u32 = {value}u;")), "{name} differs");
     }
+}
+
+#[test]
+fn deformation_and_follow_structs_match() {
+    assert_layout(
+        deform::SHADER,
+        "Range",
+        size_of::<GpuRange>(),
+        &[
+            ("first", offset_of!(GpuRange, first)),
+            ("count", offset_of!(GpuRange, count)),
+            ("destination", offset_of!(GpuRange, destination)),
+            ("joint_base", offset_of!(GpuRange, joint_base)),
+            ("weight_base", offset_of!(GpuRange, weight_base)),
+            ("target_count", offset_of!(GpuRange, target_count)),
+            ("delta_base", offset_of!(GpuRange, delta_base)),
+            ("_pad", offset_of!(GpuRange, delta_base) + 4),
+        ],
+    );
+    // The shader reads the corners one by one and ignores the instance (made the corners'
+    // base when uploaded), which it sees as padding.
+    let corners = offset_of!(PointAnchor, corners);
+    assert_layout(
+        ism::FOLLOW_SHADER,
+        "Anchor",
+        size_of::<PointAnchor>(),
+        &[
+            ("point", offset_of!(PointAnchor, point)),
+            ("a", corners),
+            ("b", corners + 4),
+            ("c", corners + 8),
+            ("weights", offset_of!(PointAnchor, weights)),
+            ("_pad", offset_of!(PointAnchor, instance)),
+        ],
+    );
 }

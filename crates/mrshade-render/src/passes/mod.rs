@@ -5,6 +5,7 @@
 pub mod composite;
 pub mod deform;
 pub mod direct;
+pub mod encode;
 pub mod gbuffer;
 pub mod shadow;
 pub mod upload;

@@ -151,15 +151,15 @@ impl Scene {
                     .with_context(|| format!("insert '{shown}'"))?;
             }
             instance.skin = instance.skin.map(|s| s + skin_base);
+            link(&mut self.node_of.instances, self.instances.len(), node + node_base);
             self.instances.push(instance);
-            self.node_of.instances.push(node + node_base);
         }
         for (mut light, node) in model.lights.into_iter().zip(model.node_of.lights) {
             light.world_from_light = oriented(world_from_model * light.world_from_light)
                 .with_context(|| format!("insert '{shown}': light '{}'", printable(&light.name)))?;
             light.realness = placement.realness;
+            link(&mut self.node_of.lights, self.lights.len(), node + node_base);
             self.lights.push(light);
-            self.node_of.lights.push(node + node_base);
         }
         for mut skin in model.skins {
             skin.offset_nodes(node_base);
@@ -178,4 +178,11 @@ impl Scene {
         self.warnings.extend(model.warnings.into_iter().map(|w| format!("insert '{shown}': {w}")));
         Ok(insert_node)
     }
+}
+
+/// Links item `index` of a list to `node`; items before it without a link (added by hand)
+/// get none (`usize::MAX`, which is no node).
+fn link(links: &mut Vec<usize>, index: usize, node: usize) {
+    links.resize(index, usize::MAX);
+    links.push(node);
 }

@@ -61,7 +61,8 @@ pub struct SceneNode {
 
 /// Which node places each instance, light and camera: indices into [`Scene::nodes`], in the
 /// order of [`Scene::instances`], [`Scene::lights`] and [`Scene::cameras`]. An instance,
-/// light or camera without an entry (one added by hand) stays where it is.
+/// light or camera without an entry, or with an entry past the nodes (`usize::MAX`: one
+/// added by hand), stays where it is.
 #[derive(Clone, Debug, Default)]
 pub struct NodeLinks {
     /// The node of each instance.

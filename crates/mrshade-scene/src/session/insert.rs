@@ -84,8 +84,11 @@ pub(super) fn load_inserts(
             };
         let name = insert.name.clone().unwrap_or_else(|| stem(&insert.model));
         let model = load_gltf(folder, &insert.model, limits).with_context(|| field("model"))?;
-        if let Some(size) = insert.fit {
-            fit(&mut placement, &model, size).with_context(|| field("fit"))?;
+        let mut model = model;
+        if let Some(size) = insert.fit
+            && !fit(&mut placement, &model, size).with_context(|| field("fit"))?
+        {
+            model.warnings.push(format!("{}: the model has no triangles to fit; it is placed unscaled", field("fit")));
         }
         let placement = Placement {
             name: name.clone(),
@@ -144,9 +147,10 @@ fn placement(insert: &InsertFile) -> Result<Trs, (&'static str, anyhow::Error)> 
 }
 
 /// Scales `placement` so that `model`'s largest side (in its rest pose) is `size` metres and
-/// moves it so that the centre of the model's base lands at the placement's translation.
-fn fit(placement: &mut Trs, model: &Scene, size: f32) -> Result<()> {
-    let (lo, hi) = model.bounds().context("the model has no geometry to fit")?;
+/// moves it so that the centre of the model's base lands at the placement's translation;
+/// `false` for a model without triangles (points and lines only, or nothing), left as it is.
+fn fit(placement: &mut Trs, model: &Scene, size: f32) -> Result<bool> {
+    let Some((lo, hi)) = model.bounds() else { return Ok(false) };
     let extent = (hi - lo).max_element();
     if extent.is_nan() || extent <= 0.0 {
         anyhow::bail!("the model is flat or a point (its largest side is {extent} m)");
@@ -154,7 +158,7 @@ fn fit(placement: &mut Trs, model: &Scene, size: f32) -> Result<()> {
     placement.scale = Vec3::splat(size / extent);
     let base = Vec3::new((lo.x + hi.x) * 0.5, lo.y, (lo.z + hi.z) * 0.5);
     placement.translation -= placement.rotation * (placement.scale * base);
-    Ok(())
+    Ok(true)
 }
 
 /// The file name without folders and extension (`models/Duck.glb` → `Duck`).

@@ -16,17 +16,27 @@ use mrshade_gpu::{GpuContext, bind, wgsl};
 use mrshade_scene::{Deformation, Primitive, Scene, deform_vertices};
 use wgpu::util::DeviceExt;
 
+/// The pass's WGSL.
+pub const SHADER: &str = wgsl!("deform.wgsl");
+
 /// Mirrors `struct Range` in deform.wgsl: one deformed instance.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct GpuRange {
-    first: u32,
-    count: u32,
-    destination: u32,
-    joint_base: u32,
-    weight_base: u32,
-    target_count: u32,
-    delta_base: u32,
+pub struct GpuRange {
+    /// First vertex of the range in the pass's own per-vertex buffers.
+    pub first: u32,
+    /// Its vertex count.
+    pub count: u32,
+    /// Its first vertex in the scene's vertex buffer.
+    pub destination: u32,
+    /// First joint matrix, or `u32::MAX` when not skinned.
+    pub joint_base: u32,
+    /// First morph weight.
+    pub weight_base: u32,
+    /// Morph targets.
+    pub target_count: u32,
+    /// First displacement (position and normal pairs).
+    pub delta_base: u32,
     _pad: u32,
 }
 
@@ -151,7 +161,7 @@ impl DeformPass {
         let mut resources: Vec<_> = buffers.iter().map(|b| b.as_entire_binding()).collect();
         resources.push(params.as_entire_binding());
         let group = bind::group(device, "deform/group", &layout, &resources);
-        let pipeline = mrshade_gpu::shader::compute_pipeline(device, "deform", wgsl!("deform.wgsl"), &[&layout]);
+        let pipeline = mrshade_gpu::shader::compute_pipeline(device, "deform", SHADER, &[&layout]);
         Some(Self {
             pipeline,
             group,

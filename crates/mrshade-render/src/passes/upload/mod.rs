@@ -34,6 +34,22 @@ impl PackedPhoto {
         Self { width: image.width, height: image.height, texels }
     }
 
+    /// 8-bit sRGB RGB rows (a live stream's frame, ffmpeg's `rgb24`) of `width × height`
+    /// pixels, decoded as a PNG photo is (`srgb_u8_decode_table`) straight to half floats:
+    /// one pass, in parallel, the same texels as [`PackedPhoto::new`] of the decoded image.
+    pub fn from_srgb8(rgb: &[u8], (width, height): (u32, u32)) -> Self {
+        use rayon::prelude::*;
+        assert_eq!(rgb.len(), width as usize * height as usize * 3, "a {width}×{height} RGB frame");
+        let table = mrshade_core::color::srgb_u8_decode_table().map(f16::from_f32);
+        let mut texels = vec![f16::ONE; width as usize * height as usize * 4];
+        texels.par_chunks_mut(4 * 4096).zip(rgb.par_chunks(3 * 4096)).for_each(|(texels, rgb)| {
+            for (t, p) in texels.chunks_exact_mut(4).zip(rgb.chunks_exact(3)) {
+                t[..3].copy_from_slice(&[table[p[0] as usize], table[p[1] as usize], table[p[2] as usize]]);
+            }
+        });
+        Self { width, height, texels }
+    }
+
     /// Bytes uploaded.
     pub fn bytes(&self) -> u64 {
         self.texels.len() as u64 * 2
@@ -74,5 +90,19 @@ impl PhotoUpload {
     pub fn bytes(&self) -> u64 {
         let (w, h) = self.photo.size();
         w as u64 * h as u64 * 8
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb8_frames_pack_as_their_decoded_images() {
+        let rgb: Vec<u8> = (0..5 * 3 * 3).map(|i| (i * 37 % 256) as u8).collect();
+        let table = mrshade_core::color::srgb_u8_decode_table();
+        let pixels = rgb.chunks_exact(3).map(|p| [0, 1, 2].map(|c| table[p[c] as usize])).collect();
+        let image = HdrImage { width: 5, height: 3, pixels };
+        assert_eq!(PackedPhoto::from_srgb8(&rgb, (5, 3)).texels, PackedPhoto::new(&image, (5, 3)).texels);
     }
 }

@@ -11,6 +11,9 @@ use mrshade_gpu::{GpuContext, bind, wgsl};
 use mrshade_scene::Scene;
 use wgpu::util::DeviceExt;
 
+/// The pass's WGSL.
+pub const FOLLOW_SHADER: &str = wgsl!("follow.wgsl");
+
 const WORKGROUP: u32 = 64;
 const ROW: u32 = 65535;
 
@@ -76,7 +79,7 @@ impl FollowPass {
                 params.as_entire_binding(),
             ],
         );
-        let pipeline = mrshade_gpu::shader::compute_pipeline(device, label, wgsl!("follow.wgsl"), &[&layout]);
+        let pipeline = mrshade_gpu::shader::compute_pipeline(device, label, FOLLOW_SHADER, &[&layout]);
         Some(Self { pipeline, group, count: global.len() as u32 })
     }
 

@@ -8,6 +8,7 @@ mod follow;
 use crate::methods::dir::{GpuPoint, PointCloud};
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
+pub use follow::FOLLOW_SHADER;
 use follow::FollowPass;
 use glam::{UVec4, Vec4};
 use mrshade_core::flags::Realness;
