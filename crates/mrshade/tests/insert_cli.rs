@@ -23,7 +23,13 @@ fn desk_with(dir: &Path, tables: &str) -> PathBuf {
     }
     for entry in std::fs::read_dir(repo("tests/assets/gltf2")).unwrap() {
         let entry = entry.unwrap();
-        std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap();
+        if entry.path().is_file() {
+            std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap();
+        }
+    }
+    std::fs::create_dir(dir.join("draco")).unwrap();
+    for file in ["2CylinderEngine.gltf", "2CylinderEngine.bin"] {
+        std::fs::copy(repo("tests/assets/gltf2/draco").join(file), dir.join("draco").join(file)).unwrap();
     }
     let session = dir.join("session.toml");
     let text = std::fs::read_to_string(&session).unwrap();
@@ -58,6 +64,7 @@ fn conformance_samples_render_on_the_desk() {
         ("simple_skin.gltf", "time_offset = 0.5"),
         ("AnimatedMorphCube.gltf", "rotation_deg = [0, 30, 0]"),
         ("Mesh_PrimitiveMode_15.gltf", ""),
+        ("draco/2CylinderEngine.gltf", ""),
     ] {
         let sub = tempfile::tempdir().unwrap();
         let session = desk_with(sub.path(), &insert(model, extra));
@@ -103,6 +110,17 @@ fn invalid_models_and_bad_inserts_are_one_line_errors() {
         let o = render(&session, &sub.join("out.png"));
         assert_one_line_error(&o, needle);
     }
+    // A damaged Draco bitstream (its bytes scrambled past the header).
+    let sub = dir.path().join("draco");
+    std::fs::create_dir(&sub).unwrap();
+    let session = desk_with(&sub, &insert("draco/2CylinderEngine.gltf", ""));
+    let bin = sub.join("draco/2CylinderEngine.bin");
+    let mut bytes = std::fs::read(&bin).unwrap();
+    for (i, b) in bytes.iter_mut().enumerate().skip(16).take(4000) {
+        *b = (i as u8).wrapping_mul(31);
+    }
+    std::fs::write(&bin, bytes).unwrap();
+    assert_one_line_error(&render(&session, &sub.join("out.png")), "KHR_draco_mesh_compression");
 }
 
 #[test]

@@ -36,6 +36,7 @@ pub fn parse(bytes: &[u8]) -> Result<Parsed> {
     let mut value: Value = serde_json::from_slice(json).context("not valid glTF 2.0 (the JSON does not parse)")?;
     check_raw(&value)?;
     super::extensions::check_required(&value)?;
+    let compressed = super::draco::compressed_accessors(&value);
     // Parsed from the text where nothing was filled in: its errors name line and column.
     let root: gltf::json::Root = if fill_optional(&mut value) {
         serde_json::from_value(value).context("not valid glTF 2.0")?
@@ -43,7 +44,7 @@ pub fn parse(bytes: &[u8]) -> Result<Parsed> {
         serde_json::from_slice(json).context("not valid glTF 2.0")?
     };
     check_unchecked_references(&root)?;
-    validate(&root)?;
+    validate(&root, &compressed)?;
     check_forest(&root)?;
     Ok(Parsed { document: gltf::Document::from_json_without_validation(root), blob: blob.map(<[u8]>::to_vec) })
 }
@@ -299,12 +300,19 @@ fn check_animation(root: &gltf::json::Root, a: usize, animation: &gltf::json::An
 }
 
 /// Runs the `gltf` crate's structural validation (indices in range, required fields), but
-/// leaves `extensionsRequired` to `extensions::check`, which knows what mrshade honours.
-fn validate(root: &gltf::json::Root) -> Result<()> {
+/// leaves `extensionsRequired` to `extensions::check_required`, which knows what mrshade
+/// honours, and lets the accessors of Draco-compressed primitives (`compressed`) go without
+/// a bufferView, as `KHR_draco_mesh_compression` has them.
+fn validate(root: &gltf::json::Root, compressed: &[usize]) -> Result<()> {
     let mut errors = Vec::new();
+    let draco_view = |path: &str| {
+        let index = path.strip_prefix("accessors[").and_then(|p| p.strip_suffix("].bufferView"));
+        index.and_then(|i| i.parse::<usize>().ok()).is_some_and(|i| compressed.contains(&i))
+    };
     root.validate(root, gltf::json::Path::new, &mut |path, error| {
         let path = path().to_string();
-        if !(error == ValidationError::Unsupported && path.starts_with("extensionsRequired")) {
+        let required = error == ValidationError::Unsupported && path.starts_with("extensionsRequired");
+        if !(required || (error == ValidationError::Missing && draco_view(&path))) {
             errors.push(format!("{}: {error}", mrshade_core::text::printable(&path)));
         }
     });

@@ -11,6 +11,7 @@ pub const SUPPORTED_EXTENSIONS: &[&str] = &[
     "KHR_materials_ior",
     "KHR_materials_volume",
     "KHR_materials_emissive_strength",
+    super::draco::EXTENSION,
 ];
 
 /// Checks the raw document's `extensionsRequired`, before anything else: a file that needs

@@ -25,6 +25,14 @@ pub fn load_meshes(
         for prim in mesh.primitives() {
             let name = format!("mesh {} primitive {}", describe(Some(mesh.index()), mesh.name()), prim.index());
             let material = prim.material().index().unwrap_or(default_material);
+            if let Some(ext) = prim.extension_value(super::draco::EXTENSION) {
+                let p = read_draco_primitive(document, &prim, ext, buffers, &name, material, budget)
+                    .with_context(|| format!("{name} ({})", super::draco::EXTENSION))?;
+                scene.warnings.extend(p.1);
+                ids.push(scene.primitives.len());
+                scene.primitives.push(p.0);
+                continue;
+            }
             match read_primitive(&prim, buffers, &name, material, budget).with_context(|| name.clone())? {
                 Some(p) => {
                     ids.push(scene.primitives.len());
@@ -140,6 +148,50 @@ fn read_primitive(
         }
     }
     Ok(Some(p))
+}
+
+/// A Draco-compressed triangle primitive (`super::draco`), checked as any other: finite
+/// positions within the POSITION accessor's bounds, flat normals where none are compressed.
+fn read_draco_primitive(
+    document: &gltf::Document,
+    prim: &gltf::Primitive,
+    ext: &serde_json::Value,
+    buffers: &[Vec<u8>],
+    name: &str,
+    material: usize,
+    budget: &mut Budget,
+) -> Result<(Primitive, Vec<String>)> {
+    if prim.mode() != Mode::Triangles {
+        bail!("Draco compresses triangle lists, but the primitive's mode is {:?}", prim.mode());
+    }
+    let decoded = super::draco::decode(document, ext, buffers, budget)?;
+    if let Some(acc) = prim.get(&gltf::Semantic::Positions) {
+        check_bounds(&acc, &decoded.positions)?;
+    }
+    if decoded.indices.is_empty() {
+        bail!("has no triangles");
+    }
+    let count = decoded.positions.len();
+    let mut p = Primitive {
+        name: name.to_string(),
+        uvs: decoded.uvs.unwrap_or_else(|| vec![Vec2::ZERO; count]),
+        positions: decoded.positions,
+        normals: Vec::new(),
+        indices: decoded.indices,
+        material,
+        skin: Vec::new(),
+        targets: Vec::new(),
+    };
+    match decoded.normals {
+        Some(n) => p.normals = n,
+        None => {
+            budget.charge("flat normals", p.indices.len() as u64, 32)?;
+            make_flat_normals(&mut p)
+        }
+    }
+    let warnings =
+        decoded.ignored.iter().map(|a| format!("{name}: the Draco-compressed {a} attribute is not read")).collect();
+    Ok((p, warnings))
 }
 
 /// `JOINTS_0` and `WEIGHTS_0` (glTF 2.0 §3.7.3.1), both or neither; the weights of every

@@ -9,6 +9,7 @@ mod accessors;
 mod animations;
 mod buffers;
 mod document;
+mod draco;
 mod extensions;
 mod materials;
 mod meshes;
