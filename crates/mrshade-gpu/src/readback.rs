@@ -34,6 +34,19 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
         wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
     );
     ctx.queue.submit([encoder.finish()]);
+    map_read(ctx, &buffer, |mapped| {
+        let mut out = Vec::with_capacity((row * height) as usize);
+        for y in 0..height {
+            let start = (y * padded_row) as usize;
+            out.extend_from_slice(&mapped[start..start + row as usize]);
+        }
+        out
+    })
+}
+
+/// Waits for the work submitted so far, maps `buffer` (`MAP_READ`) and hands its bytes to
+/// `read`; unmaps it after, so that a buffer kept from frame to frame can be read again.
+pub fn map_read<T>(ctx: &GpuContext, buffer: &wgpu::Buffer, read: impl FnOnce(&[u8]) -> T) -> Result<T> {
     let slice = buffer.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -41,13 +54,10 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
     });
     ctx.wait_idle()?;
     rx.recv().context("readback callback lost")?.context("mapping the readback buffer failed")?;
-    let mapped = slice.get_mapped_range().map_err(|e| anyhow::anyhow!("readback buffer not mapped: {e:?}"))?;
-    let mut out = Vec::with_capacity((row * height) as usize);
-    for y in 0..height {
-        let start = (y * padded_row) as usize;
-        out.extend_from_slice(&mapped[start..start + row as usize]);
-    }
-    drop(mapped);
+    let out = {
+        let mapped = slice.get_mapped_range().map_err(|e| anyhow::anyhow!("readback buffer not mapped: {e:?}"))?;
+        read(&mapped)
+    };
     buffer.unmap();
     Ok(out)
 }
@@ -76,14 +86,5 @@ pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>> {
     let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
     encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
     ctx.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    ctx.wait_idle()?;
-    rx.recv().context("readback callback lost")?.context("mapping the readback buffer failed")?;
-    let out = slice.get_mapped_range().map_err(|e| anyhow::anyhow!("readback buffer not mapped: {e:?}"))?.to_vec();
-    staging.unmap();
-    Ok(out)
+    map_read(ctx, &staging, <[u8]>::to_vec)
 }

@@ -53,3 +53,18 @@ pub fn compute_pipeline_entry(
         cache: None,
     })
 }
+
+/// Most workgroups a dispatch may have along one dimension (WebGPU's default limit).
+pub const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65535;
+
+/// Dispatches `count` invocations of a one-dimensional compute shader of `workgroup` threads:
+/// rows of up to [`MAX_WORKGROUPS_PER_DIMENSION`] workgroups. The shader's index is then
+/// `id.x + id.y * num_workgroups.x * workgroup`, and it returns for indices `≥ count`.
+pub fn dispatch_linear(pass: &mut wgpu::ComputePass, count: u32, workgroup: u32) {
+    let groups = count.div_ceil(workgroup);
+    pass.dispatch_workgroups(
+        groups.min(MAX_WORKGROUPS_PER_DIMENSION),
+        groups.div_ceil(MAX_WORKGROUPS_PER_DIMENSION),
+        1,
+    );
+}

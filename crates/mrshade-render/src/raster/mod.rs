@@ -204,14 +204,12 @@ impl Rasterizer {
             rec.encoder.clear_buffer(&v.target, v.offset, Some(v.bytes));
             rec.encoder.copy_buffer_to_buffer(&self.args_init, 0, &v.args, 0, 12);
         }
-        let groups = self.triangle_count.div_ceil(64).max(1);
-        let (gx, gy) = (groups.min(65535), groups.div_ceil(65535));
         rec.compute(label, |pass| {
             pass.set_pipeline(&self.small);
             for v in views.clone() {
                 pass.set_bind_group(0, &v.bind_group, &[]);
                 pass.set_bind_group(1, &v.args_group, &[]);
-                pass.dispatch_workgroups(gx, gy, 1);
+                mrshade_gpu::shader::dispatch_linear(pass, self.triangle_count.max(1), 64);
             }
             pass.set_pipeline(&self.big);
             for v in views {

@@ -4,9 +4,9 @@
 //! 720p. The codes are those of `HdrImage::to_srgb8` (the same thresholds, searched the same
 //! way: a test compares them). Input: the composite. Output: RGB bytes.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use mrshade_core::color::SrgbEncoder;
-use mrshade_gpu::{GpuContext, Target, bind, wgsl};
+use mrshade_gpu::{GpuContext, Target, bind, readback, wgsl};
 use wgpu::util::DeviceExt;
 
 /// The pass's WGSL.
@@ -91,26 +91,14 @@ impl EncodePass {
         encoder.copy_buffer_to_buffer(&self.codes, 0, &self.readback, 0, code_bytes);
         encoder.copy_buffer_to_buffer(&self.non_finite, 0, &self.readback, code_bytes, 4);
         ctx.queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        ctx.wait_idle()?;
-        rx.recv().context("readback callback lost")?.context("mapping the encoded frame failed")?;
-        let rgb = {
-            let mapped = slice.get_mapped_range().map_err(|e| anyhow::anyhow!("encoded frame not mapped: {e:?}"))?;
-            let words: &[u32] = bytemuck::cast_slice(&mapped);
+        let (rgb, non_finite) = readback::map_read(ctx, &self.readback, |mapped| {
+            let words: &[u32] = bytemuck::cast_slice(mapped);
             let (codes, bad) = words.split_at(words.len() - 1);
-            if bad[0] > 0 {
-                let count = bad[0];
-                drop(mapped);
-                self.readback.unmap();
-                bail!("the frame has {count} pixels that are NaN or infinite (not written as black)");
-            }
-            unpack(codes)
-        };
-        self.readback.unmap();
+            (if bad[0] == 0 { unpack(codes) } else { Vec::new() }, bad[0])
+        })?;
+        if non_finite > 0 {
+            bail!("the frame has {non_finite} pixels that are NaN or infinite (not written as black)");
+        }
         Ok(rgb)
     }
 }

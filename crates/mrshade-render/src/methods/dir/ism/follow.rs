@@ -14,9 +14,6 @@ use wgpu::util::DeviceExt;
 /// The pass's WGSL.
 pub const FOLLOW_SHADER: &str = wgsl!("follow.wgsl");
 
-const WORKGROUP: u32 = 64;
-const ROW: u32 = 65535;
-
 /// The follow pass of one point cloud.
 pub struct FollowPass {
     pipeline: wgpu::ComputePipeline,
@@ -85,11 +82,10 @@ impl FollowPass {
 
     /// Moves the anchored points onto the deformed surface.
     pub fn record(&self, rec: &mut Recorder) {
-        let groups = self.count.div_ceil(WORKGROUP);
         rec.compute(Self::LABEL, |pass| {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.group, &[]);
-            pass.dispatch_workgroups(groups.min(ROW), groups.div_ceil(ROW), 1);
+            mrshade_gpu::shader::dispatch_linear(pass, self.count, 64);
         });
     }
 }

@@ -343,9 +343,8 @@ impl IsmPass {
                 if count == 0 {
                     continue;
                 }
-                let groups = count.div_ceil(64);
                 pass.set_bind_group(0, &self.groups[parity][cloud], &[]);
-                pass.dispatch_workgroups(groups.min(65535), groups.div_ceil(65535), 1);
+                mrshade_gpu::shader::dispatch_linear(pass, count, 64);
             }
         });
     }

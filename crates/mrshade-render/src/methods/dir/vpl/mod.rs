@@ -358,11 +358,10 @@ impl VplPass {
             pass.set_pipeline(&self.allocate);
             pass.set_bind_group(0, allocate, &[]);
             pass.dispatch_workgroups(1, 1, 1);
-            let real_groups = self.real_count.div_ceil(64);
-            if real_groups > 0 {
+            if self.real_count > 0 {
                 pass.set_pipeline(&self.near_points);
                 pass.set_bind_group(0, bounce, &[]);
-                pass.dispatch_workgroups(real_groups.min(65535), real_groups.div_ceil(65535), 1);
+                mrshade_gpu::shader::dispatch_linear(pass, self.real_count, 64);
             }
             pass.set_pipeline(&self.generate);
             pass.set_bind_group(0, generate, &[]);
@@ -371,8 +370,7 @@ impl VplPass {
                 pass.set_bind_group(0, bounce, &[]);
                 if self.params.modes.y != 0 {
                     pass.set_pipeline(&self.candidates);
-                    let groups = self.point_count.div_ceil(64);
-                    pass.dispatch_workgroups(groups.min(65535), groups.div_ceil(65535), 1);
+                    mrshade_gpu::shader::dispatch_linear(pass, self.point_count, 64);
                 }
                 // One workgroup per slot (bounce.wgsl: LANES threads share its sums).
                 pass.set_pipeline(&self.finalize);
