@@ -10,6 +10,7 @@
 
 use super::{Primitive, Scene};
 use glam::{Mat3, Mat4, Vec3};
+use mrshade_core::math::bounding_box;
 
 /// How one instance's vertices are moved at one time (empty for a rigid instance).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -18,6 +19,9 @@ pub struct Deformation {
     pub joint_matrices: Vec<Mat4>,
     /// Morph-target weights, one per target of its primitive (empty without targets).
     pub morph_weights: Vec<f32>,
+    /// The box of the deformed positions (world space when skinned, else object space),
+    /// where the deformation was computed by [`Scene::pose_at`] (`None` where built by hand).
+    pub bounds: Option<(Vec3, Vec3)>,
 }
 
 impl Deformation {
@@ -98,7 +102,9 @@ impl Scene {
         };
         let mut morph_weights = node_weights.map_or_else(|| instance.morph_weights.clone(), <[f32]>::to_vec);
         morph_weights.resize(primitive.targets.len(), 0.0);
-        Deformation { joint_matrices, morph_weights }
+        let mut deformation = Deformation { joint_matrices, morph_weights, bounds: None };
+        deformation.bounds = Some(bounding_box(&deform_vertices(primitive, &deformation).0));
+        deformation
     }
 
     /// The scene as posed: instances, lights and cameras moved, deformed primitives replaced

@@ -9,7 +9,7 @@
 //! lights must stay within [`MAX_WORLD_EXTENT`] metres of the origin.
 
 use super::animation::{Channel, TargetPath};
-use super::{Deformation, Primitive, Scene, deform_vertices};
+use super::{Deformation, Primitive, Scene};
 use anyhow::{Context, Result, bail};
 use glam::{Mat3, Mat4, Quat, Vec3};
 use mrshade_core::math::{bounding_box, box_corners};
@@ -245,9 +245,9 @@ impl Scene {
                     continue;
                 }
                 let primitive = &self.primitives[self.instances[i].primitive];
-                let (positions, _) = deform_vertices(primitive, deformation);
+                let Some(bounds) = deformation.bounds else { continue };
                 let node = self.node_of.instances.get(i).copied().filter(|&node| node < n);
-                check_extent(primitive, bounding_box(&positions), pose.instances[i])
+                check_extent(primitive, bounds, pose.instances[i])
                     .with_context(|| node.map_or_else(|| format!("instance {i} at t = {time} s"), at))?;
             }
         }

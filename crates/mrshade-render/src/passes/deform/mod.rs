@@ -41,9 +41,6 @@ pub struct GpuRange {
 }
 
 const NOT_SKINNED: u32 = u32::MAX;
-const WORKGROUP: u32 = 64;
-/// Workgroups per row of the dispatch (the limit on one dimension is 65535).
-const ROW: u32 = 65535;
 
 /// What one deformed instance needs per frame: where its joint matrices and weights go.
 struct Slot {
@@ -176,7 +173,7 @@ impl DeformPass {
 
     /// Takes this frame's deformations (one per scene instance; the pass runs this frame if
     /// any changed) and returns the object-space box of every instance whose deformation
-    /// changed (computed on the CPU: shadow maps and VPL sampling fit to them).
+    /// changed (the pose's, `Deformation::bounds`: shadow maps and VPL sampling fit to them).
     pub fn update(&mut self, queue: &wgpu::Queue, deformations: &[Deformation]) -> Vec<(usize, (Vec3, Vec3))> {
         let wanted: Vec<Deformation> =
             self.slots.iter().map(|s| deformations.get(s.instance).cloned().unwrap_or_default()).collect();
@@ -185,7 +182,9 @@ impl DeformPass {
             if self.current.get(k) == Some(d) {
                 continue;
             }
-            changed.push((slot.instance, bounding_box(&deform_vertices(&slot.primitive, d).0)));
+            // The pose computed the box; a deformation built by hand has none yet.
+            let object_box = d.bounds.unwrap_or_else(|| bounding_box(&deform_vertices(&slot.primitive, d).0));
+            changed.push((slot.instance, object_box));
             if slot.joint_count > 0 && d.joint_matrices.len() == slot.joint_count {
                 let offset = (slot.joint_base * std::mem::size_of::<Mat4>()) as u64;
                 queue.write_buffer(&self.joints, offset, bytemuck::cast_slice(&d.joint_matrices));
@@ -207,11 +206,10 @@ impl DeformPass {
         if !std::mem::take(&mut self.pending) {
             return;
         }
-        let groups = self.vertex_count.div_ceil(WORKGROUP);
         rec.compute(Self::LABEL, |pass| {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.group, &[]);
-            pass.dispatch_workgroups(groups.min(ROW), groups.div_ceil(ROW), 1);
+            mrshade_gpu::shader::dispatch_linear(pass, self.vertex_count, 64);
         });
     }
 }
