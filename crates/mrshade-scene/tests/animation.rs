@@ -2,9 +2,12 @@
 //! glTF 2.0 Appendix C, and broken animations refused with one line naming the animation,
 //! the channel and the field.
 
+mod common;
+
+use common::{error_of, load};
+
 use glam::{Mat4, Quat, Vec3};
-use mrshade_scene::gltf::load_gltf;
-use mrshade_scene::{AssetSource, Scene, ScenePose};
+use mrshade_scene::{Scene, ScenePose};
 use mrshade_testkit::gltf::{GltfBuilder, quad, quat};
 use serde_json::{Value, json};
 use std::f32::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4};
@@ -39,26 +42,6 @@ fn animate(b: &mut GltfBuilder, name: &str, tracks: &[Track]) {
         channels.push(json!({"sampler": i, "target": {"node": t.node, "path": t.path}}));
     }
     b.animation(json!({"name": name, "samplers": samplers, "channels": channels}));
-}
-
-fn write(b: &GltfBuilder) -> (tempfile::TempDir, AssetSource) {
-    let dir = tempfile::tempdir().unwrap();
-    b.write_gltf(dir.path(), "scene");
-    let source = AssetSource::dir(dir.path());
-    (dir, source)
-}
-
-fn load(b: &GltfBuilder) -> Scene {
-    let (_dir, source) = write(b);
-    load_gltf(&source, "scene.gltf", &Default::default()).unwrap()
-}
-
-/// The one-line error of loading `b`, which names the file.
-fn error_of(b: &GltfBuilder) -> String {
-    let (_dir, source) = write(b);
-    let msg = format!("{:#}", load_gltf(&source, "scene.gltf", &Default::default()).expect_err("must fail"));
-    assert!(msg.contains("scene.gltf") && !msg.contains('\n'), "one line naming the file: {msg}");
-    msg
 }
 
 /// A document with one quad mesh on node 0 ("box"); returns it and the mesh.

@@ -2,31 +2,16 @@
 //! `AnimatedMorphCube`-style models), the glTF conformance models of that kind, and broken
 //! skins refused with one line naming the file and the field.
 
+mod common;
+
+use common::{error_of, load};
+
 use glam::{Mat4, Quat, Vec3};
 use mrshade_scene::gltf::load_gltf;
 use mrshade_scene::{AssetSource, Scene, deform_vertices};
 use mrshade_testkit::deform::{morph_box, simple_skin};
 use mrshade_testkit::gltf::GltfBuilder;
 use serde_json::json;
-
-fn write(b: &GltfBuilder) -> (tempfile::TempDir, AssetSource) {
-    let dir = tempfile::tempdir().unwrap();
-    b.write_gltf(dir.path(), "scene");
-    let source = AssetSource::dir(dir.path());
-    (dir, source)
-}
-
-fn load(b: &GltfBuilder) -> Scene {
-    let (_dir, source) = write(b);
-    load_gltf(&source, "scene.gltf", &Default::default()).unwrap()
-}
-
-fn error_of(b: &GltfBuilder) -> String {
-    let (_dir, source) = write(b);
-    let msg = format!("{:#}", load_gltf(&source, "scene.gltf", &Default::default()).expect_err("must fail"));
-    assert!(msg.contains("scene.gltf") && !msg.contains('\n'), "one line naming the file: {msg}");
-    msg
-}
 
 /// World positions of instance 0 at `time`, deformed on the CPU.
 fn world_positions(scene: &Scene, time: f32) -> Vec<Vec3> {

@@ -1,17 +1,15 @@
 //! glTF features the loader must honour.
 
+mod common;
+
+use common::load;
+
 use glam::{Mat4, Vec3};
 use mrshade_core::flags::Realness;
 use mrshade_scene::gltf::{load_gltf, load_gltf_bytes};
 use mrshade_scene::{AssetSource, LightKind};
 use mrshade_testkit::gltf::{GltfBuilder, cuboid, lambert, quad, quat};
 use serde_json::json;
-
-fn load(b: &GltfBuilder) -> mrshade_scene::Scene {
-    let dir = tempfile::tempdir().unwrap();
-    b.write_gltf(dir.path(), "scene");
-    load_gltf(&AssetSource::dir(dir.path()), "scene.gltf", &Default::default()).unwrap()
-}
 
 #[test]
 fn hierarchy_composes_trs_and_matrices() {

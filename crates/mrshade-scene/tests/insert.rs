@@ -1,19 +1,16 @@
 //! `Scene::insert`: a model's meshes, lights, skins and animations placed under a new node,
 //! with its indices offset and its flags set by the insert.
 
+mod common;
+
+use common::load;
+
 use glam::{Mat4, Quat, Vec3};
 use mrshade_core::flags::Realness;
-use mrshade_scene::gltf::load_gltf;
-use mrshade_scene::{AssetSource, Placement, Scene, Trs};
+use mrshade_scene::{Placement, Trs};
 use mrshade_testkit::deform::morph_box;
 use mrshade_testkit::gltf::{GltfBuilder, cuboid, lambert};
 use serde_json::json;
-
-fn load(b: &GltfBuilder) -> Scene {
-    let dir = tempfile::tempdir().unwrap();
-    b.write_gltf(dir.path(), "scene");
-    load_gltf(&AssetSource::dir(dir.path()), "scene.gltf", &Default::default()).unwrap()
-}
 
 #[test]
 fn an_insert_brings_its_meshes_lights_and_animations_under_its_node() {
