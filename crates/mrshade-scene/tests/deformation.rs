@@ -139,4 +139,11 @@ fn morph_weights_must_be_finite() {
     b.patch_node(morph.node, |n| n["weights"] = json!([1e39, 0.0]));
     let msg = error_of(&b);
     assert!(msg.contains("weight") && msg.contains("node 'morph'"), "{msg}");
+    // Finite, but displacing the box 4·10⁹ m (found by the fuzzer: the path tracer's BVH
+    // builder panicked on it).
+    let mut b = GltfBuilder::new();
+    let morph = morph_box(&mut b, [0.0; 3]);
+    b.patch_node(morph.node, |n| n["weights"] = json!([4294967300.0, 0.0]));
+    let msg = error_of(&b);
+    assert!(msg.contains("node 'morph' in its rest pose") && msg.contains("beyond"), "{msg}");
 }

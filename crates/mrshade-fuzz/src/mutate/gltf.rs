@@ -98,7 +98,7 @@ fn at<'a>(v: &'a mut Value, path: &[Step]) -> Option<&'a mut Value> {
 }
 
 fn mutate_document(doc: &mut Value, bin: &mut Vec<u8>, u: &mut Unstructured) -> String {
-    match u.int_in_range(0..=12u8).unwrap_or(0) {
+    match u.int_in_range(0..=13u8).unwrap_or(0) {
         0..=4 => mutate_any_value(doc, u),
         5 => graph(doc, u),
         6 => transform(doc, u),
@@ -107,6 +107,7 @@ fn mutate_document(doc: &mut Value, bin: &mut Vec<u8>, u: &mut Unstructured) -> 
         9 => uris(doc, u),
         10 => many(doc, u),
         11 => animation(doc, bin, u),
+        12 => super::deformers::mutate(doc, bin, u),
         _ => references(doc, u),
     }
 }
@@ -166,7 +167,7 @@ fn mutate_any_value(doc: &mut Value, u: &mut Unstructured) -> String {
     }
 }
 
-fn json_number(n: f64) -> Value {
+pub(super) fn json_number(n: f64) -> Value {
     if n.fract() == 0.0 && n.abs() < 1.8e19 {
         if n >= 0.0 { json!(n as u64) } else { json!(n as i64) }
     } else {
@@ -174,7 +175,7 @@ fn json_number(n: f64) -> Value {
     }
 }
 
-fn count(doc: &Value, key: &str) -> usize {
+pub(super) fn count(doc: &Value, key: &str) -> usize {
     doc.get(key).and_then(Value::as_array).map_or(0, Vec::len)
 }
 
@@ -541,11 +542,12 @@ fn new_sampler(doc: &mut Value, bin: &mut Vec<u8>, path: &str, interpolation: &s
 }
 
 /// Appends `floats` to `bin` as a new FLOAT accessor of `ty`; returns its index.
-fn push_floats(doc: &mut Value, bin: &mut Vec<u8>, floats: &[f32], ty: &str) -> usize {
+pub(super) fn push_floats(doc: &mut Value, bin: &mut Vec<u8>, floats: &[f32], ty: &str) -> usize {
     let n = match ty {
         "SCALAR" => 1,
         "VEC2" => 2,
         "VEC3" => 3,
+        "MAT4" => 16,
         _ => 4,
     };
     let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
@@ -554,7 +556,7 @@ fn push_floats(doc: &mut Value, bin: &mut Vec<u8>, floats: &[f32], ty: &str) -> 
 
 /// Appends `bytes` to `bin` (4-aligned) as a new bufferView of buffer 0 (whose length grows)
 /// and an accessor over it, `accessor` giving its other fields; returns the accessor's index.
-fn push_accessor(doc: &mut Value, bin: &mut Vec<u8>, bytes: &[u8], mut accessor: Value) -> usize {
+pub(super) fn push_accessor(doc: &mut Value, bin: &mut Vec<u8>, bytes: &[u8], mut accessor: Value) -> usize {
     while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
@@ -571,7 +573,7 @@ fn push_accessor(doc: &mut Value, bin: &mut Vec<u8>, bytes: &[u8], mut accessor:
 }
 
 /// Appends `item` to the array `key` of the document (made if missing); returns its index.
-fn push(doc: &mut Value, key: &str, item: Value) -> usize {
+pub(super) fn push(doc: &mut Value, key: &str, item: Value) -> usize {
     let Some(root) = doc.as_object_mut() else { return 0 };
     let entry = root.entry(key).or_insert(json!([]));
     if !entry.is_array() {

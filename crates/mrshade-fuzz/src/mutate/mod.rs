@@ -5,6 +5,7 @@
 //! byte mutations cover the rest.
 
 mod bytes;
+mod deformers;
 mod gltf;
 mod images;
 mod session;

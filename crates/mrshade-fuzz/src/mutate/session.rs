@@ -67,6 +67,12 @@ pub fn mutate(files: &mut BTreeMap<String, Vec<u8>>, u: &mut Unstructured) -> St
         return format!("session.toml bytes: {step}");
     }
     let Ok(mut table) = toml::from_str::<toml::Table>(&text) else { return "session.toml not TOML".into() };
+    if u.ratio(1, 5).unwrap_or(false) {
+        let scene = files.keys().find(|n| n.ends_with(".glb") || n.ends_with(".gltf")).cloned();
+        let step = placed(&mut table, scene, u);
+        files.insert("session.toml".into(), toml::to_string(&table).unwrap_or_default().into_bytes());
+        return format!("session.toml: {step}");
+    }
     let mut steps = Vec::new();
     for _ in 0..u.int_in_range(1..=3u8).unwrap_or(1) {
         let (key, kind) = KEYS[u.choose_index(KEYS.len()).unwrap_or(0)];
@@ -90,6 +96,45 @@ pub fn mutate(files: &mut BTreeMap<String, Vec<u8>>, u: &mut Unstructured) -> St
     }
     files.insert("session.toml".into(), toml::to_string(&table).unwrap_or_default().into_bytes());
     format!("session.toml: {}", steps.join("; "))
+}
+
+/// An `[[insert]]` (of the session's own scene, or of any path) or a `[camera]` table, each
+/// field present or not, numbers at their boundaries.
+fn placed(table: &mut toml::Table, scene: Option<String>, u: &mut Unstructured) -> String {
+    let numbers = |n: usize, u: &mut Unstructured| {
+        toml::Value::Array((0..n).map(|_| toml::Value::Float(values::number(u, Some(1.0)))).collect())
+    };
+    let mut placed = toml::Table::new();
+    let key = if u.ratio(1, 2).unwrap_or(false) {
+        let model = scene.filter(|_| !u.ratio(1, 5).unwrap_or(false)).unwrap_or_else(|| values::string(u).into());
+        placed.insert("model".into(), toml::Value::String(model));
+        for (field, n) in [("translation", 3), ("rotation", 4), ("rotation_deg", 3), ("scale", 3), ("fit", 0)] {
+            if u.ratio(1, 3).unwrap_or(false) {
+                let value = if n == 0 { toml::Value::Float(values::number(u, Some(0.1))) } else { numbers(n, u) };
+                placed.insert(field.into(), value);
+            }
+        }
+        for field in ["parent", "animation", "name"] {
+            if u.ratio(1, 4).unwrap_or(false) {
+                placed.insert(field.into(), toml::Value::String(values::string(u).into()));
+            }
+        }
+        let inserts = table.entry("insert").or_insert_with(|| toml::Value::Array(Vec::new()));
+        if let Some(list) = inserts.as_array_mut() {
+            list.push(toml::Value::Table(placed.clone()));
+        }
+        "insert"
+    } else {
+        for (field, n) in [("position", 3), ("look_at", 3), ("up", 3), ("yfov", 0), ("yfov_deg", 0), ("znear", 0)] {
+            if u.ratio(2, 3).unwrap_or(false) {
+                let value = if n == 0 { toml::Value::Float(values::number(u, Some(0.8))) } else { numbers(n, u) };
+                placed.insert(field.into(), value);
+            }
+        }
+        table.insert("camera".into(), toml::Value::Table(placed.clone()));
+        "camera"
+    };
+    format!("{key} = {placed}")
 }
 
 fn set(table: &mut toml::Table, dotted: &str, value: toml::Value) {

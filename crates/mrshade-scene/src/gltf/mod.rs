@@ -55,6 +55,9 @@ pub fn load_gltf_bytes(bytes: &[u8], folder: &AssetSource, limits: &Limits) -> R
     let scene_node_of = nodes::place_nodes(&document, &mesh_primitives, &animated, &mut budget, &mut scene)?;
     skins::load_skins(&document, &buffers, &scene_node_of, &mut budget, &mut scene)?;
     animations::load_animations(&document, &buffers, &scene_node_of, &mut budget, &mut scene)?;
+    // The rest pose's deformed geometry (what a still renders) must be usable too.
+    let rest = scene.rest_pose();
+    scene.check_deformed(&rest, |i| format!("node '{}' in its rest pose", scene.instances[i].node_name))?;
     // The poses at the ends of the animations must be usable (the start is what a still
     // renders); poses between keys are checked when they are sampled.
     if let Some((first, last)) = scene.time_range() {

@@ -103,7 +103,11 @@ impl Scene {
         let mut morph_weights = node_weights.map_or_else(|| instance.morph_weights.clone(), <[f32]>::to_vec);
         morph_weights.resize(primitive.targets.len(), 0.0);
         let mut deformation = Deformation { joint_matrices, morph_weights, bounds: None };
-        deformation.bounds = Some(bounding_box(&deform_vertices(primitive, &deformation).0));
+        // A non-finite position makes the box NaN, which the extent check refuses (a plain
+        // box would drop it).
+        let (positions, _) = deform_vertices(primitive, &deformation);
+        let finite = positions.iter().all(|p| p.is_finite());
+        deformation.bounds = Some(if finite { bounding_box(&positions) } else { (Vec3::NAN, Vec3::NAN) });
         deformation
     }
 

@@ -176,6 +176,9 @@ impl Scene {
             self.warnings.push(format!("insert '{shown}': its cameras are not used (the session's camera renders)"));
         }
         self.warnings.extend(model.warnings.into_iter().map(|w| format!("insert '{shown}': {w}")));
+        // Skinned geometry follows its joints, which the placement has just moved.
+        let rest = self.rest_pose();
+        self.check_deformed(&rest, |i| format!("insert '{shown}': node '{}'", self.instances[i].node_name))?;
         Ok(insert_node)
     }
 }

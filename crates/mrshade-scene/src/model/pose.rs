@@ -240,16 +240,10 @@ impl Scene {
                     self.deformation_of(i, &world, node_weights)
                 })
                 .collect();
-            for (i, deformation) in pose.deformations.iter().enumerate() {
-                if deformation.is_empty() {
-                    continue;
-                }
-                let primitive = &self.primitives[self.instances[i].primitive];
-                let Some(bounds) = deformation.bounds else { continue };
+            self.check_deformed(&pose, |i| {
                 let node = self.node_of.instances.get(i).copied().filter(|&node| node < n);
-                check_extent(primitive, bounds, pose.instances[i])
-                    .with_context(|| node.map_or_else(|| format!("instance {i} at t = {time} s"), at))?;
-            }
+                node.map_or_else(|| format!("instance {i} at t = {time} s"), at)
+            })?;
         }
         for (i, light) in pose.lights.iter_mut().enumerate() {
             if let Some(node) = moving(&self.node_of.lights, i) {
@@ -262,6 +256,18 @@ impl Scene {
             }
         }
         Ok(pose)
+    }
+
+    /// The deformed geometry of `pose` must be finite and within [`MAX_WORLD_EXTENT`], as
+    /// rigid geometry must (a morph weight of 10⁹ is finite, its displacements are not
+    /// usable); `at(i)` names instance `i` in messages.
+    pub(crate) fn check_deformed(&self, pose: &ScenePose, at: impl Fn(usize) -> String) -> Result<()> {
+        for (i, deformation) in pose.deformations.iter().enumerate() {
+            let Some(bounds) = deformation.bounds else { continue };
+            let primitive = &self.primitives[self.instances[i].primitive];
+            check_extent(primitive, bounds, pose.instances[i]).with_context(|| at(i))?;
+        }
+        Ok(())
     }
 
     /// The loaded transforms.
