@@ -114,7 +114,7 @@ impl Geometry {
     /// The nearest hit of the ray `origin + t·dir`, `t ∈ (0, t_max)`, in `world`.
     pub fn intersect(&self, scene: &Scene, origin: Vec3, dir: Vec3, t_max: f32, world: World) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, t_max);
+        let ray = Ray::new(Vec3A::from(origin), positive_zeros(dir), 0.0, t_max);
         let mut hit = RayHit::none();
         let mut bary = Vec2::ZERO;
         bvh.ray_traverse(ray, &mut hit, |ray, id| {
@@ -139,7 +139,7 @@ impl Geometry {
     /// real blocker and otherwise remembers whether it passed a virtual one.
     pub fn visibility(&self, scene: &Scene, origin: Vec3, dir: Vec3, t_max: f32) -> Differential<bool> {
         let Some(bvh) = self.bvh.as_ref() else { return Differential { rv: true, r: true } };
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, t_max);
+        let ray = Ray::new(Vec3A::from(origin), positive_zeros(dir), 0.0, t_max);
         let mut virtual_blocker = false;
         let free_of_real = bvh.ray_traverse_miss(ray, |ray, id| {
             let index = bvh.primitive_indices[id] as usize;
@@ -173,6 +173,14 @@ impl Geometry {
         }
         Some((t, bary))
     }
+}
+
+/// `dir` with every −0.0 component made +0.0. obvhs 0.4 picks a ray's octant by `d < 0` but
+/// inverts `d` by its sign bit, so a −0.0 component puts the ray in one octant with the slopes
+/// of another and it misses everything: a sun straight down (a −90° rotation about x leaves
+/// x = −0.0) shone through every roof.
+fn positive_zeros(dir: Vec3) -> Vec3A {
+    Vec3A::from(dir) + Vec3A::ZERO
 }
 
 /// Möller–Trumbore: distance and barycentrics (of corners 1, 2) of the hit, both faces.
@@ -234,6 +242,32 @@ mod tests {
         // From behind too: both faces are hit.
         assert!(intersect_triangle(p, Vec3::new(0.25, 0.25, -1.0), Vec3::Z).is_some());
         assert!(intersect_triangle(p, Vec3::new(0.75, 0.75, 1.0), Vec3::NEG_Z).is_none());
+    }
+
+    #[test]
+    fn rays_with_negative_zero_components_hit() {
+        let mut scene = Scene::default();
+        scene.materials.push(Default::default());
+        scene.primitives.push(mrshade_scene::Primitive {
+            positions: vec![Vec3::new(-1.0, 2.0, -1.0), Vec3::new(1.0, 2.0, -1.0), Vec3::new(0.0, 2.0, 1.0)],
+            normals: vec![Vec3::Y; 3],
+            uvs: vec![Vec2::ZERO; 3],
+            indices: vec![0, 1, 2],
+            ..Default::default()
+        });
+        scene.instances.push(mrshade_scene::Instance {
+            node_name: "t".into(),
+            primitive: 0,
+            world_from_object: glam::Mat4::IDENTITY,
+            realness: Realness::Real,
+            skin: None,
+            morph_weights: Vec::new(),
+        });
+        let g = Geometry::new(&scene);
+        for dir in [Vec3::new(-0.0, 1.0, 0.0), Vec3::new(0.0, 1.0, -0.0), Vec3::new(-0.0, 1.0, -0.0)] {
+            assert!(g.intersect(&scene, Vec3::ZERO, dir, f32::INFINITY, World::RealAndVirtual).is_some(), "{dir:?}");
+            assert_eq!(g.visibility(&scene, Vec3::ZERO, dir, f32::INFINITY), Differential { rv: false, r: false });
+        }
     }
 
     #[test]

@@ -13,6 +13,17 @@
 //!
 //! Light sampling: every punctual light at every smooth bounce, and the probe by importance
 //! sampling with multiple importance sampling against the BSDF (power heuristic, Veach 1997).
+//!
+//! The partition with [`crate::caustics`]: a punctual light is a point (or a direction), so a
+//! camera path reaches it only by a shadow ray from a smooth (non-mirror) lobe, and shadow
+//! rays stop at every surface, glass included. Camera paths therefore carry every path
+//! `L X … E` whose vertex next to a punctual light `L` scatters it through a smooth lobe, and
+//! none of the paths `L S+ D … E` whose first vertices are mirror or smooth-glass events; the
+//! light tracer carries `L S+ D E` of those (the caustics seen directly), so no path is
+//! counted twice. `L S+ D` followed by more bounces (`L S+ D D+ E`, `L S+ D S+ E`: a caustic
+//! lighting another diffuse surface, or seen in a mirror or through glass) is in neither and
+//! is missing. Shadow rays must never pass through glass as if it were transparent: that would
+//! count caustic light twice (and with the wrong geometry).
 
 use crate::bsdf::BsdfSample;
 use crate::environment::EnvironmentLight;
@@ -26,9 +37,9 @@ use mrshade_core::flags::Realness;
 use mrshade_core::settings::ReferenceSettings;
 use mrshade_scene::Scene;
 
-/// Which halves a path feeds.
+/// Which halves a path feeds (camera paths and caustic photons alike).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Lanes {
+pub(crate) enum Lanes {
     /// Shared: it has met no virtual object yet.
     Both,
     /// The `L_rv` half after a split.
@@ -38,7 +49,7 @@ enum Lanes {
 }
 
 impl Lanes {
-    fn world(self) -> World {
+    pub(crate) fn world(self) -> World {
         if self == Lanes::R { World::RealOnly } else { World::RealAndVirtual }
     }
 }
@@ -199,20 +210,26 @@ impl Tracer<'_> {
 
     /// Whether the segment toward a light is open in each lane's world.
     fn visibility(&self, lanes: Lanes, surface: &Surface, dir: Vec3, distance: f32) -> Differential<bool> {
-        let origin = surface.spawn(dir);
-        let t_max = if distance.is_finite() { (distance - 1e-4 * (1.0 + distance)).max(0.0) } else { f32::INFINITY };
-        let v = self.geometry.visibility(self.scene, origin, dir, t_max);
+        let v = self.open(surface, dir, distance);
         match lanes {
             Lanes::Both => v,
             Lanes::Rv => Differential { rv: v.rv, r: false },
             Lanes::R => Differential { rv: false, r: v.r },
         }
     }
+
+    /// Whether the segment from `surface` along `dir` over `distance` (infinite: a ray) is free
+    /// of real objects (`r`) and of any (`rv`).
+    pub(crate) fn open(&self, surface: &Surface, dir: Vec3, distance: f32) -> Differential<bool> {
+        let origin = surface.spawn(dir);
+        let t_max = if distance.is_finite() { (distance - 1e-4 * (1.0 + distance)).max(0.0) } else { f32::INFINITY };
+        self.geometry.visibility(self.scene, origin, dir, t_max)
+    }
 }
 
 /// The world direction of a BSDF sample, or `None` where it would leave on the wrong side of
 /// the true surface (a reflection below it, a refraction above it).
-fn leaves_correctly(surface: &Surface, s: &BsdfSample) -> Option<Vec3> {
+pub(crate) fn leaves_correctly(surface: &Surface, s: &BsdfSample) -> Option<Vec3> {
     let dir = surface.frame.to_world(s.wi).normalize();
     let above = dir.dot(surface.geometric) > 0.0;
     (above != s.crossed).then_some(dir)

@@ -8,9 +8,12 @@
 //! - [`environment`], [`lights`]: the probe (importance sampled) and punctual lights, with the
 //!   data contract's conventions;
 //! - [`integrator`]: one path scored twice;
+//! - [`caustics`]: punctual lights through mirrors and smooth glass, traced from the lights;
 //! - [`render()`]: the image loop on all cores and the composite.
 
 pub mod bsdf;
+mod camera;
+pub mod caustics;
 pub mod environment;
 pub mod geometry;
 pub mod integrator;
@@ -20,7 +23,8 @@ pub mod sampler;
 pub mod surface;
 mod texture;
 
-pub use render::{ReferenceImage, render, render_pose};
+pub use caustics::CausticSettings;
+pub use render::{ReferenceImage, render, render_pose, render_with};
 
 /// What the path tracer renders otherwise than `scene` asks, one line each: transmission is
 /// always smooth (`bsdf`), so rough glass is rendered as smooth glass.

@@ -1,11 +1,15 @@
 //! The image loop: camera rays with box-filtered sub-pixel positions (as the benchmark's
-//! answers), rows in parallel on every core, and the differential composite.
+//! answers), rows in parallel on every core, the caustics of punctual lights traced from the
+//! lights ([`crate::caustics`]) and added to the same pixel sums, and the differential
+//! composite.
 
+use crate::camera::Pinhole;
+use crate::caustics::{self, CausticSettings};
 use crate::environment::EnvironmentLight;
 use crate::geometry::Geometry;
 use crate::integrator::Tracer;
 use crate::sampler::PathSampler;
-use glam::{Vec3, Vec4Swizzles};
+use glam::Vec3;
 use mrshade_core::settings::CompositeSettings;
 use mrshade_core::{Differential, HdrImage};
 use mrshade_scene::Session;
@@ -42,11 +46,7 @@ struct PixelSums {
 /// `[reference]` settings. `progress(rows_done, rows)` is called from worker threads as rows
 /// finish.
 pub fn render(session: &Session, progress: &(dyn Fn(u32, u32) + Sync)) -> ReferenceImage {
-    if session.scene.has_deformations() {
-        render_pose(session, &session.scene.rest_pose(), progress)
-    } else {
-        render_scene(session, &session.scene, progress)
-    }
+    render_with(session, None, &CausticSettings::default(), progress)
 }
 
 /// Renders `session` with its scene in `pose` (a frame of its animations: instances, lights
@@ -56,12 +56,30 @@ pub fn render_pose(
     pose: &mrshade_scene::ScenePose,
     progress: &(dyn Fn(u32, u32) + Sync),
 ) -> ReferenceImage {
-    render_scene(session, &session.scene.posed(pose), progress)
+    render_with(session, Some(pose), &CausticSettings::default(), progress)
+}
+
+/// Renders `session` in `pose` (`None`: the rest pose, as [`render`]) with the caustics pass
+/// as `caustics` says. `progress` counts camera rows; the caustics follow the last row.
+pub fn render_with(
+    session: &Session,
+    pose: Option<&mrshade_scene::ScenePose>,
+    caustics: &CausticSettings,
+    progress: &(dyn Fn(u32, u32) + Sync),
+) -> ReferenceImage {
+    match pose {
+        Some(pose) => render_scene(session, &session.scene.posed(pose), caustics, progress),
+        None if session.scene.has_deformations() => {
+            render_scene(session, &session.scene.posed(&session.scene.rest_pose()), caustics, progress)
+        }
+        None => render_scene(session, &session.scene, caustics, progress),
+    }
 }
 
 fn render_scene(
     session: &Session,
     scene: &mrshade_scene::Scene,
+    caustic_settings: &CausticSettings,
     progress: &(dyn Fn(u32, u32) + Sync),
 ) -> ReferenceImage {
     let settings = session.settings.reference;
@@ -69,12 +87,9 @@ fn render_scene(
     let environment = session.environment.as_ref().map(EnvironmentLight::new);
     let tracer = Tracer { scene, geometry: &geometry, environment: environment.as_ref(), settings };
     let (width, height) = (session.output.width, session.output.height);
-    let camera = &scene.cameras[session.camera];
-    let tan_half = (camera.yfov * 0.5).tan();
-    let aspect = width as f32 / height as f32;
-    let origin = camera.world_from_camera.w_axis.xyz();
+    let camera = Pinhole::new(&scene.cameras[session.camera], width, height);
     let rows_done = AtomicU32::new(0);
-    let sums: Vec<PixelSums> = (0..height)
+    let mut sums: Vec<PixelSums> = (0..height)
         .into_par_iter()
         .flat_map_iter(|y| {
             let row: Vec<PixelSums> = (0..width)
@@ -84,10 +99,8 @@ fn render_scene(
                     for i in 0..settings.spp {
                         let sampler = PathSampler::new(pixel, i, settings.seed);
                         let [jx, jy] = sampler.pixel();
-                        let sx = (2.0 * (x as f32 + jx) / width as f32 - 1.0) * tan_half * aspect;
-                        let sy = (1.0 - 2.0 * (y as f32 + jy) / height as f32) * tan_half;
-                        let dir = camera.world_from_camera.transform_vector3(Vec3::new(sx, sy, -1.0)).normalize();
-                        let result = tracer.trace_camera(origin, dir, &sampler);
+                        let dir = camera.ray(x as f32 + jx, y as f32 + jy);
+                        let result = tracer.trace_camera(camera.origin, dir, &sampler);
                         let l = result.radiance;
                         sums.all += l;
                         if result.sees_virtual {
@@ -105,6 +118,19 @@ fn render_scene(
             row
         })
         .collect();
+    let photons =
+        caustic_settings.photons_per_light.unwrap_or_else(|| caustics::default_photons(width, height, settings.spp));
+    if let Some(image) = caustics::render(&tracer, &camera, width, height, photons) {
+        // The caustics are pixel means; the sums are over `spp` camera samples. Each part goes
+        // where the composite reads it (real or virtual surface), as a camera sample's would.
+        let n = settings.spp as f32;
+        let times = |d: Differential<Vec3>| Differential { rv: d.rv * n, r: d.r * n };
+        for (s, c) in sums.iter_mut().zip(image) {
+            s.all += times(c.all);
+            s.real += times(c.real);
+            s.virtual_rv += c.virtual_rv * n;
+        }
+    }
     finish(session, &session.settings.composite, &sums)
 }
 

@@ -45,7 +45,16 @@ impl PathSampler {
         PathSampler { seed: hash(pixel ^ hash(seed.wrapping_add(0x9e37_79b9))), index }
     }
 
-    /// The sub-pixel position in [0, 1)².
+    /// The numbers of photon `photon` of light `light` for the render seed `seed`. The Sobol
+    /// sequence holds 2^16 samples, so photons come in runs of 2^16, each run on its own
+    /// scramble seed (independent sequences; stratified within a run).
+    pub fn photon(light: u32, photon: u64, seed: u32) -> PathSampler {
+        let run = (photon >> 16) as u32;
+        let stream = hash(hash(light ^ 0x68e3_1da4) ^ hash(run.wrapping_add(0x1b87_3593)));
+        PathSampler { seed: hash(stream ^ hash(seed.wrapping_add(0x7f4a_7c15))), index: (photon & 0xffff) as u32 }
+    }
+
+    /// The sub-pixel position in [0, 1)²; for a photon, its emission's first two numbers.
     pub fn pixel(&self) -> [f32; 2] {
         [self.dimension(0), self.dimension(1)]
     }

@@ -59,9 +59,12 @@ impl Renderer {
         self.method.record(rec, raster);
         // 4. G-buffer, shadow maps, probe, indirect light ─▶ `Differential { rv: L_rv, r: L_r }`.
         self.direct.record(rec);
-        // 5. (The specular stage — reflections, refractions, caustics — attaches here: it reads
-        //    the G-buffer and the method's indirect light and adds to `L_rv`, `L_r`.)
-        // 6. L_rv, L_r, flags, photo ─▶ the composite and α.
+        // 5. G-buffer, geometry, L_rv, L_r, photo ─▶ the light of reflections and refractions
+        //    on traced pixels (impostors, reflection/refraction G-buffers, back-projection).
+        if let Some(specular) = &self.specular {
+            specular.record(rec, raster);
+        }
+        // 6. L_rv, L_r, specular light, flags, photo ─▶ the composite and α.
         self.composite.record(rec);
     }
 
@@ -91,6 +94,9 @@ impl Renderer {
         self.uniforms.set_camera(&inputs.camera, inputs.jitter, self.previous_clip_from_world);
         self.previous_clip_from_world = Some(unjittered);
         self.gbuffer_pass.camera.set_clip_from_world(queue, self.uniforms.clip_from_world);
+        if let Some(specular) = &mut self.specular {
+            specular.prepare(queue, &self.scene.geometry, self.uniforms.clip_from_world);
+        }
         self.uniforms.exposure_env.w = self.frame_index as f32;
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&self.uniforms));
         let change = FrameChange {

@@ -16,6 +16,7 @@ pub mod outputs;
 pub mod passes;
 pub mod raster;
 pub mod scene_gpu;
+pub mod specular;
 pub mod stream;
 pub mod uniforms;
 

@@ -140,6 +140,7 @@ impl Renderer {
             Aov { name: "normal", image: AovImage::Linear(normals.clone()) },
         ]
         .into_iter()
+        .chain(self.read_specular_aovs(ctx)?)
         .chain(self.method.read_aovs(
             ctx,
             &AovView {
@@ -150,6 +151,29 @@ impl Renderer {
             },
         )?)
         .collect())
+    }
+}
+
+impl Renderer {
+    /// The specular stage's AOVs (none without the stage): its light in camera values, and
+    /// its reflection and refraction G-buffers: hit positions (directions where the ray left
+    /// the scene) and path weights (Fresnel · transmittance).
+    fn read_specular_aovs(&self, ctx: &GpuContext) -> Result<Vec<Aov>> {
+        let Some(stage) = &self.specular else { return Ok(Vec::new()) };
+        let g = &stage.gbuffers;
+        let rgb32 = |target: &Target| -> Result<HdrImage> {
+            let (width, height) = target.size();
+            let texels = readback::read_rgba32f(ctx, &target.texture)?;
+            Ok(HdrImage { width, height, pixels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect() })
+        };
+        let linear = |name, image| Aov { name, image: AovImage::Linear(image) };
+        Ok(vec![
+            linear("specular_light", read_rgba16f(ctx, &self.specular_light)?),
+            linear("reflection_hit", rgb32(&g.reflection_hit)?),
+            linear("refraction_hit", rgb32(&g.refraction_hit)?),
+            linear("reflection_weight", read_rgba16f(ctx, &g.reflection_weight)?),
+            linear("refraction_weight", read_rgba16f(ctx, &g.refraction_weight)?),
+        ])
     }
 }
 

@@ -10,6 +10,7 @@ use crate::passes::shadow::ShadowPass;
 use crate::passes::upload::{PackedPhoto, PhotoUpload};
 use crate::raster::Rasterizer;
 use crate::scene_gpu::GpuScene;
+use crate::specular::{SpecularInputs, SpecularStage};
 use crate::uniforms::FrameUniforms;
 use anyhow::Result;
 use mrshade_core::Differential;
@@ -39,6 +40,10 @@ pub struct Renderer {
     pub(crate) method: Box<dyn LightTransport>,
     pub(crate) radiance: Differential<Target>,
     pub(crate) direct: DirectPass,
+    /// Reflections and refractions (`None` when the scene has nothing it traces).
+    pub(crate) specular: Option<SpecularStage>,
+    /// The specular stage's light, in camera values (zero where nothing is traced).
+    pub(crate) specular_light: Target,
     pub(crate) photo: PhotoUpload,
     pub(crate) composite_targets: CompositeTargets,
     pub(crate) composite: CompositePass,
@@ -71,6 +76,11 @@ impl Renderer {
     /// Instance `index`'s world transform.
     pub fn instance_transform(&self, index: usize) -> glam::Mat4 {
         self.scene.geometry.transform(index)
+    }
+
+    /// Whether the specular stage runs (the scene holds a material it traces and it is on).
+    pub fn specular_traced(&self) -> bool {
+        self.specular.is_some()
     }
 
     /// The light-transport method as its concrete type (`None` if another method runs).
@@ -117,6 +127,13 @@ impl Renderer {
         });
         let direct =
             DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, method.indirect(), &radiance);
+        let specular_light = Target::new_2d(
+            device,
+            "specular/light",
+            internal,
+            wgpu::TextureFormat::Rgba16Float,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        );
         let composite_targets = CompositeTargets::new(device, uniforms.output_size());
         let composite = CompositePass::new(
             ctx,
@@ -125,8 +142,25 @@ impl Renderer {
             &radiance,
             &gbuffer.flags,
             &photo.photo,
+            &specular_light,
             &composite_targets,
         );
+        let specular = SpecularStage::new(&SpecularInputs {
+            ctx,
+            scene: &session.scene,
+            settings,
+            frame: &frame,
+            uniforms: &uniforms,
+            gpu_scene: &scene,
+            shadow_maps: &shadows.maps,
+            rasterizer: &rasterizer,
+            gbuffer: &gbuffer,
+            camera_visibility: &gbuffer_pass.camera.target,
+            radiance: &radiance,
+            photo: &photo.photo,
+            composite_params: &composite.params,
+            output: &specular_light,
+        });
         Self {
             uniforms,
             frame_buffer: frame,
@@ -142,6 +176,8 @@ impl Renderer {
             method,
             radiance,
             direct,
+            specular,
+            specular_light,
             photo,
             composite_targets,
             composite,

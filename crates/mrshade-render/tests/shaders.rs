@@ -7,6 +7,9 @@ use mrshade_render::passes::deform::GpuRange;
 use mrshade_render::passes::{composite, deform, direct, encode, gbuffer};
 use mrshade_render::raster;
 use mrshade_render::scene_gpu::{GpuInstance, GpuLight, GpuMaterial};
+use mrshade_render::specular;
+use mrshade_render::specular::impostors::GpuImpostor;
+use mrshade_render::specular::interior::{GpuBvhNode, GpuInterior};
 use mrshade_render::uniforms::FrameUniforms;
 use std::mem::{offset_of, size_of};
 
@@ -28,6 +31,8 @@ const MODULES: &[(&str, &str)] = &[
     ("deform", deform::SHADER),
     ("ism/follow", ism::FOLLOW_SHADER),
     ("encode", encode::SHADER),
+    ("specular/trace", specular::TRACE_SHADER),
+    ("specular/resolve", specular::RESOLVE_SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -172,5 +177,36 @@ fn deformation_and_follow_structs_match() {
             ("weights", offset_of!(PointAnchor, weights)),
             ("_pad", offset_of!(PointAnchor, instance)),
         ],
+    );
+}
+
+#[test]
+fn impostors_match() {
+    assert_layout(
+        specular::TRACE_SHADER,
+        "Impostor",
+        size_of::<GpuImpostor>(),
+        &[("clip_from_world", offset_of!(GpuImpostor, clip_from_world)), ("info", offset_of!(GpuImpostor, info))],
+    );
+}
+
+#[test]
+fn interiors_match() {
+    assert_layout(
+        specular::TRACE_SHADER,
+        "BvhNode",
+        size_of::<GpuBvhNode>(),
+        &[
+            ("min", offset_of!(GpuBvhNode, min)),
+            ("count", offset_of!(GpuBvhNode, count)),
+            ("max", offset_of!(GpuBvhNode, max)),
+            ("first", offset_of!(GpuBvhNode, first)),
+        ],
+    );
+    assert_layout(
+        specular::TRACE_SHADER,
+        "Interior",
+        size_of::<GpuInterior>(),
+        &[("object_from_world", offset_of!(GpuInterior, object_from_world)), ("info", offset_of!(GpuInterior, info))],
     );
 }

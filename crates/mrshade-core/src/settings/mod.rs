@@ -9,12 +9,14 @@ mod dir;
 mod limits;
 mod reference;
 mod shadows;
+mod specular;
 
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;
+pub use specular::{Intersection, Refraction, RefractionPolicy, SpecularSettings};
 
 use serde::{Deserialize, Serialize};
 
@@ -78,6 +80,8 @@ pub struct RenderSettings {
     pub shadows: ShadowSettings,
     /// The `dir` method.
     pub dir: DirSettings,
+    /// Reflections and refractions (the specular stage, with every method).
+    pub specular: SpecularSettings,
     /// The CPU reference path tracer (`mrshade reference`).
     pub reference: ReferenceSettings,
 }
@@ -88,6 +92,7 @@ impl RenderSettings {
         self.composite.validate()?;
         self.shadows.validate()?;
         self.dir.validate()?;
+        self.specular.validate()?;
         self.reference.validate()
     }
 }

@@ -21,7 +21,7 @@ use mrshade_core::color::luminance;
 use std::f32::consts::PI;
 
 /// GGX α below which reflection is treated as a perfect mirror.
-const MIRROR_ALPHA: f32 = 1e-3;
+pub const MIRROR_ALPHA: f32 = 1e-3;
 
 /// The material's values at one surface point.
 #[derive(Clone, Copy, Debug)]

@@ -87,11 +87,24 @@ impl Builder {
 
     /// A spot light at `position` shining straight down.
     pub fn spot_down(&mut self, position: Vec3, intensity: f32, cones: (f32, f32), realness: Realness) -> &mut Self {
+        self.spot(position, Vec3::NEG_Y, intensity, cones, realness)
+    }
+
+    /// A spot light at `position` shining along `direction` (unit).
+    pub fn spot(
+        &mut self,
+        position: Vec3,
+        direction: Vec3,
+        intensity: f32,
+        cones: (f32, f32),
+        realness: Realness,
+    ) -> &mut Self {
+        let rotation = glam::Quat::from_rotation_arc(Vec3::NEG_Z, direction);
         self.scene.lights.push(Light {
             name: "spot".into(),
             kind: LightKind::Spot { inner_cone: cones.0, outer_cone: cones.1 },
             intensity: Vec3::splat(intensity),
-            world_from_light: Mat4::from_translation(position) * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2),
+            world_from_light: Mat4::from_rotation_translation(rotation, position),
             realness,
         });
         self

@@ -26,22 +26,23 @@ fn env_irradiance_at(frame: Frame, world_normal: vec3f) -> vec3f {
     return textureSampleLevel(env_irradiance, env_sampler, uv, 0.0).rgb * frame.exposure_env.y;
 }
 
-// Split-sum scale and bias (Karis 2013): ∫ f_spec cos ≈ F0·A + F90·B.
-fn env_dfg(n_dot_v: f32, roughness: f32) -> vec2f {
-    return textureSampleLevel(env_dfg_table, env_sampler, vec2f(n_dot_v, roughness), 0.0).rg;
+// Split-sum albedo of the specular lobe: the part of the light the surface reflects
+// specularly (Karis 2013), F0·A + F90·B.
+fn env_specular_albedo(s: Surface) -> vec3f {
+    let ab = env_dfg(max(dot(s.normal, s.view), 1e-4), s.roughness);
+    return surface_f0(s) * ab.x + surface_f90(s) * ab.y;
+}
+
+// The probe's diffuse light: what the specular lobe (of albedo `specular_albedo`) leaves
+// (glTF fresnel_mix, averaged over the lobe).
+fn env_diffuse(frame: Frame, s: Surface, specular_albedo: vec3f) -> vec3f {
+    let diffuse_weight = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission);
+    return diffuse_weight * s.base_color / PI * env_irradiance_at(frame, s.normal);
 }
 
 // Unshadowed image-based light reflected (and refracted) toward the eye.
 fn env_shading(frame: Frame, s: Surface, refraction: vec3f) -> vec3f {
-    let n_dot_v = max(dot(s.normal, s.view), 1e-4);
-    let ab = env_dfg(n_dot_v, s.roughness);
-    let f0 = surface_f0(s);
-    let f90 = surface_f90(s);
-    let specular_albedo = f0 * ab.x + f90 * ab.y;
-    let r = reflect(-s.view, s.normal);
-    let specular = specular_albedo * env_radiance_at(frame, r, s.roughness);
-    // Diffuse receives what the specular lobe leaves (glTF fresnel_mix, averaged over the lobe).
-    let diffuse_weight = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission);
-    let diffuse = diffuse_weight * s.base_color / PI * env_irradiance_at(frame, s.normal);
-    return (diffuse + specular) * s.occlusion + refraction;
+    let specular_albedo = env_specular_albedo(s);
+    let specular = specular_albedo * env_radiance_at(frame, reflect(-s.view, s.normal), s.roughness);
+    return (env_diffuse(frame, s, specular_albedo) + specular) * s.occlusion + refraction;
 }

@@ -24,8 +24,10 @@ struct Material {
     // array layers of base color (sRGB), metallic-roughness, normal, occlusion (linear); NO_TEXTURE if absent
     texture_layers: vec4u,
     // emissive layer (sRGB), repeat bits (u, v per slot in the order above + emissive),
-    // 1 if double-sided, unused
+    // 1 if double-sided, 1 if the specular stage traces it
     texture_info: vec4u,
 }
+
+fn is_traced(m: Material) -> bool { return m.texture_info.w != 0u; }
 
 const NO_TEXTURE: u32 = 0xffffffffu;

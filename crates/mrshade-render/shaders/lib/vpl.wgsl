@@ -48,6 +48,12 @@ fn vpl_routing(flags: u32, r_p: f32, vis: vec2f) -> vec3f {
     return vec3f((1.0 - ir) * min(vis.x, vis.y), path_real * r_p * vis.x, r_p * vis.x);
 }
 
+// VPLs reflect with at least this roughness. A VPL on a mirror (roughness 0) would otherwise
+// emit through a GGX lobe of width ~0: a singularity that a few hundred VPLs turn into
+// fireflies on every receiver. Clamping the lobe (the usual remedy for glossy VPLs, Křivánek
+// et al. 2010) keeps the VPL's energy and spreads it over a lobe the VPL count can sample.
+const VPL_MIN_ROUGHNESS: f32 = 0.3;
+
 // The BRDF of the surface under a surface VPL, "seen" from its incoming light direction.
 fn vpl_surface(v: Vpl) -> Surface {
     var s: Surface;
@@ -56,7 +62,7 @@ fn vpl_surface(v: Vpl) -> Surface {
     s.view = v.incoming.xyz;
     s.base_color = v.albedo.rgb;
     s.metallic = v.power.w;
-    s.roughness = v.normal.w;
+    s.roughness = max(v.normal.w, VPL_MIN_ROUGHNESS);
     s.dielectric_f0 = vec3f(v.incoming.w);
     s.dielectric_f90 = v.albedo.w;
     s.transmission = 0.0;

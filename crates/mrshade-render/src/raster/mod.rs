@@ -18,6 +18,21 @@ pub enum Casters {
     All,
     /// Only one kind.
     Only(Realness),
+    /// Triangles `first..first + count` (one instance's): the nearest surface.
+    Range {
+        /// First triangle.
+        first: u32,
+        /// Triangle count.
+        count: u32,
+    },
+    /// Triangles `first..first + count`: the farthest surface, as Wyman's back-face pass
+    /// keeps with depth test GREATER (refraction spec §2.12).
+    FarthestOf {
+        /// First triangle.
+        first: u32,
+        /// Triangle count.
+        count: u32,
+    },
 }
 
 /// Mirrors `RasterView` in raster.wgsl.
@@ -50,6 +65,8 @@ pub struct RasterView {
     args: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     args_group: wgpu::BindGroup,
+    /// Triangles the view draws (the scene's, or one instance's).
+    triangles: u32,
 }
 
 impl RasterView {
@@ -143,16 +160,20 @@ impl Rasterizer {
         target: Option<(&wgpu::Buffer, u64)>,
     ) -> RasterView {
         let device = &ctx.device;
-        let filter = match casters {
-            Casters::All => 0,
-            Casters::Only(Realness::Real) => 1,
-            Casters::Only(Realness::Virtual) => 2,
+        // (filter, first triangle, triangle count, keep the farthest)
+        let all = self.triangle_count;
+        let (filter, first, triangles, farthest) = match casters {
+            Casters::All => (0, 0, all, 0.0),
+            Casters::Only(Realness::Real) => (1, 0, all, 0.0),
+            Casters::Only(Realness::Virtual) => (2, 0, all, 0.0),
+            Casters::Range { first, count } => (0, first, count, 0.0),
+            Casters::FarthestOf { first, count } => (0, first, count, 1.0),
         };
         let uniform = ViewUniform {
             clip_from_world,
-            size: UVec4::new(size.0, size.1, filter, self.triangle_count),
-            limits: UVec4::new(BIG_CAPACITY, SMALL_TRIANGLE_PIXELS, BIG_TILE_STRIDE, 0),
-            params: Vec4::new(near, 0.0, 0.0, 0.0),
+            size: UVec4::new(size.0, size.1, filter, first + triangles),
+            limits: UVec4::new(BIG_CAPACITY, SMALL_TRIANGLE_PIXELS, BIG_TILE_STRIDE, first),
+            params: Vec4::new(near, farthest, 0.0, 0.0),
         };
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}/view")),
@@ -195,7 +216,7 @@ impl Rasterizer {
         );
         let args_group =
             bind::group(device, &format!("{label}/args_group"), &self.args_layout, &[args.as_entire_binding()]);
-        RasterView { uniform, uniform_buffer, target, offset, bytes, args, bind_group, args_group }
+        RasterView { uniform, uniform_buffer, target, offset, bytes, args, bind_group, args_group, triangles }
     }
 
     /// Clears and rasterises `views`, timed as one pass named `label`.
@@ -209,7 +230,7 @@ impl Rasterizer {
             for v in views.clone() {
                 pass.set_bind_group(0, &v.bind_group, &[]);
                 pass.set_bind_group(1, &v.args_group, &[]);
-                mrshade_gpu::shader::dispatch_linear(pass, self.triangle_count.max(1), 64);
+                mrshade_gpu::shader::dispatch_linear(pass, v.triangles.max(1), 64);
             }
             pass.set_pipeline(&self.big);
             for v in views {

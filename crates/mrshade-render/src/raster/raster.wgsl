@@ -10,11 +10,11 @@
 
 struct RasterView {
     clip_from_world: mat4x4f,
-    // width, height, caster filter (0 all, 1 real only, 2 virtual only), triangle count
+    // width, height, caster filter (0 all, 1 real only, 2 virtual only), end of the triangle range
     size: vec4u,
-    // big-record capacity, small-triangle pixel limit, tile stride of cs_big, unused
+    // big-record capacity, small-triangle pixel limit, tile stride of cs_big, first triangle
     limits: vec4u,
-    // near-plane w (0: no clipping, orthographic), unused…
+    // near-plane w (0: no clipping, orthographic), 1 to keep the farthest surface, unused…
     params: vec4f,
 }
 
@@ -37,7 +37,9 @@ fn write_texel(x: u32, y: u32, a: vec3f, b: vec3f, c: vec3f, inv_area: f32, payl
     if (!covers(w)) { return; }
     let z = w.x * a.z + w.y * b.z + w.z * c.z;
     if (z <= 0.0 || z > 1.0) { return; }
-    let packed = (u64(bitcast<u32>(z)) << 32u) | u64(payload);
+    // Reversed depth: the nearest surface has the largest; 1 − z makes atomicMax keep the farthest.
+    let kept = select(z, 1.0 - z, view.params.y > 0.0);
+    let packed = (u64(bitcast<u32>(kept)) << 32u) | u64(payload);
     atomicMax(&target_texels[y * view.size.x + x], packed);
 }
 
@@ -72,7 +74,7 @@ fn to_screen(h: vec4f) -> vec3f {
 
 @compute @workgroup_size(64)
 fn cs_small(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) groups: vec3u) {
-    let id = gid.x + gid.y * groups.x * 64u;
+    let id = view.limits.w + gid.x + gid.y * groups.x * 64u;
     if (id >= view.size.w) { return; }
     let tri = triangles[id];
     let inst = instances[tri.x];

@@ -189,6 +189,22 @@ impl Geometry {
             .map(|((b, m), _)| (*b, m))
     }
 
+    /// Number of instances.
+    pub fn instance_count(&self) -> usize {
+        self.current.len()
+    }
+
+    /// Material index, first triangle and triangle count of instance `index`.
+    pub fn instance_triangles(&self, index: usize) -> (u32, u32, u32) {
+        let info = self.static_info[index].0;
+        (info.x, info.z, info.w)
+    }
+
+    /// World-space box of instance `index` as it will be rendered: min, max.
+    pub fn world_box(&self, index: usize) -> (Vec3, Vec3) {
+        world_box(self.object_boxes[index], &self.current[index])
+    }
+
     /// The transform instance `index` will be rendered with.
     pub fn transform(&self, index: usize) -> Mat4 {
         self.current[index]

@@ -134,7 +134,7 @@ fn light_faces(light: &Light, center: Vec3, radius: f32, near: f32) -> Faces {
 }
 
 /// View matrix looking from `eye` along unit `dir`.
-fn look_to(eye: Vec3, dir: Vec3) -> Mat4 {
+pub fn look_to(eye: Vec3, dir: Vec3) -> Mat4 {
     let up = if dir.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
     glam::camera::rh::view::look_to_mat4(eye, dir, up)
 }

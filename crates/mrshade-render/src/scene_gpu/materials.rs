@@ -6,6 +6,7 @@
 use super::mips::rgba8_mips;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
+use mrshade_core::settings::SpecularSettings;
 use mrshade_gpu::Target;
 use mrshade_gpu::texture::write_level;
 use mrshade_scene::{AlphaMode, Scene, Texture, TextureRef};
@@ -52,8 +53,9 @@ pub struct GpuMaterials {
 }
 
 impl GpuMaterials {
-    /// Uploads every material and texture of `scene`.
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
+    /// Uploads every material and texture of `scene`; materials the specular stage traces
+    /// (`specular.traces`) are marked so that the other passes leave their reflections to it.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene, specular: &SpecularSettings) -> Self {
         let size = scene.textures.iter().map(|t| t.width.max(t.height)).max().unwrap_or(1).next_power_of_two();
         let size = size.min(MAX_TEXTURE_SIZE);
         // Layer of every texture in its array.
@@ -64,7 +66,7 @@ impl GpuMaterials {
             layers[i] = list.len() as u32;
             list.push(t);
         }
-        let gpu: Vec<GpuMaterial> = scene.materials.iter().map(|m| gpu_material(m, scene, &layers)).collect();
+        let gpu: Vec<GpuMaterial> = scene.materials.iter().map(|m| gpu_material(m, scene, &layers, specular)).collect();
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene/materials"),
             contents: bytemuck::cast_slice(&gpu),
@@ -89,7 +91,13 @@ impl GpuMaterials {
     }
 }
 
-fn gpu_material(m: &mrshade_scene::Material, scene: &Scene, layers: &[u32]) -> GpuMaterial {
+fn gpu_material(
+    m: &mrshade_scene::Material,
+    scene: &Scene,
+    layers: &[u32],
+    specular: &SpecularSettings,
+) -> GpuMaterial {
+    let traced = specular.traces(m.metallic, m.roughness, m.transmission);
     let cutoff = match m.alpha_mode {
         AlphaMode::Mask(c) => c,
         AlphaMode::Opaque | AlphaMode::Blend => -1.0,
@@ -122,7 +130,7 @@ fn gpu_material(m: &mrshade_scene::Material, scene: &Scene, layers: &[u32]) -> G
         attenuation_cutoff: m.attenuation_color.extend(cutoff),
         emissive: m.emissive.extend(0.0),
         texture_layers: UVec4::new(layer(slots[0]), layer(slots[1]), layer(slots[2]), layer(slots[3])),
-        texture_info: UVec4::new(layer(slots[4]), repeat_bits, m.double_sided as u32, 0),
+        texture_info: UVec4::new(layer(slots[4]), repeat_bits, m.double_sided as u32, traced as u32),
     }
 }
 

@@ -10,7 +10,7 @@ mod probe;
 
 pub use geometry::{Geometry, GpuInstance, Vertex};
 pub(crate) use lights::MAX_FRUSTUM_HALF_ANGLE;
-pub use lights::{GpuLight, ShadowLayer, pack_lights};
+pub use lights::{GpuLight, ShadowLayer, look_to, pack_lights};
 pub use materials::{GpuMaterial, GpuMaterials};
 pub use probe::GpuProbe;
 
@@ -66,7 +66,7 @@ impl GpuScene {
         };
         Self {
             geometry: Geometry::new(device, scene),
-            materials: GpuMaterials::new(device, queue, scene),
+            materials: GpuMaterials::new(device, queue, scene, &session.settings.specular),
             lights: storage("scene/lights", bytemuck::cast_slice(&lights)),
             light_count,
             shadow_layers,

@@ -5,7 +5,9 @@ use super::SessionOverrides;
 use super::output::OutputFile;
 use crate::sequence::{DEFAULT_FPS, DEFAULT_SAMPLES};
 use anyhow::{Context, Result};
-use mrshade_core::settings::{CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, ShadowSettings};
+use mrshade_core::settings::{
+    CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, ShadowSettings, SpecularSettings,
+};
 use serde::Deserialize;
 
 #[derive(Deserialize)]
@@ -27,6 +29,8 @@ pub(super) struct SessionFile {
     pub(super) shadows: ShadowSettings,
     #[serde(default)]
     pub(super) dir: DirSettings,
+    #[serde(default)]
+    pub(super) specular: SpecularSettings,
     #[serde(default)]
     pub(super) reference: ReferenceSettings,
     #[serde(default)]

@@ -21,6 +21,7 @@
 //! [composite]                   # optional: see mrshade_core::settings::CompositeSettings
 //! [shadows]                     # optional: see mrshade_core::settings::ShadowSettings
 //! [dir]                         # optional: see mrshade_core::settings::DirSettings
+//! [specular]                    # optional: see mrshade_core::settings::SpecularSettings
 //! [reference]                   # optional: see mrshade_core::settings::ReferenceSettings
 //! [sequence]                    # optional: a posed image sequence (see crate::sequence)
 //! transforms = "transforms.json" # nerfstudio / instant-ngp poses and photos, instead of `background`
@@ -245,6 +246,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         composite: file.composite,
         shadows: file.shadows,
         dir: file.dir,
+        specular: file.specular,
         reference: file.reference,
     };
     settings.validate().map_err(anyhow::Error::msg)?;

@@ -8,11 +8,6 @@
 // sample by virtual coverage. Where nothing virtual changes a pixel the photo passes through
 // bit-exactly (difference 0 and coverage 0).
 
-struct CompositeParams {
-    // 1 = α-scaled, 0 = additive; ε; α_max; unused
-    mode_epsilon_max: vec4f,
-}
-
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: CompositeParams;
 @group(0) @binding(2) var l_rv_texture: texture_2d<f32>;
@@ -23,12 +18,9 @@ struct CompositeParams {
 @group(0) @binding(6) var out_composite: texture_storage_2d<rgba32float, write>;
 // rgb: mean α of the real samples
 @group(0) @binding(7) var out_alpha: texture_storage_2d<rgba16float, write>;
-
-fn alpha_of(photo: vec3f, exposed_l_r: vec3f) -> vec3f {
-    if (params.mode_epsilon_max.x == 0.0) { return vec3f(1.0); }
-    let eps = params.mode_epsilon_max.y;
-    return clamp((photo + eps) / (max(exposed_l_r, vec3f(0.0)) + eps), vec3f(0.0), vec3f(params.mode_epsilon_max.z));
-}
+// The specular stage's light on traced pixels, in camera values: the whole traced part on
+// virtual pixels, its difference on real ones (zero where nothing is traced).
+@group(0) @binding(8) var specular_texture: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
@@ -47,13 +39,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             let q = pixel * s + vec2i(sx, sy);
             let flags = textureLoad(flags_texture, q, 0).r;
             let l_rv = textureLoad(l_rv_texture, q, 0).rgb;
+            let specular = textureLoad(specular_texture, q, 0).rgb;
             if (is_covered(flags) && !is_real(flags)) {
-                virtual_sum += exposure * l_rv;
+                virtual_sum += exposure * l_rv + specular;
                 virtual_count += 1.0;
             } else {
                 let l_r = textureLoad(l_r_texture, q, 0).rgb;
-                let a = alpha_of(photo, exposure * l_r);
-                real_delta += a * exposure * (l_rv - l_r);
+                let a = alpha_of(params, photo, exposure * l_r);
+                real_delta += a * exposure * (l_rv - l_r) + specular;
                 alpha_sum += a;
                 real_count += 1.0;
             }

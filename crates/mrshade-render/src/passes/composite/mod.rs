@@ -31,6 +31,8 @@ impl CompositeTargets {
 
 /// The composite pass.
 pub struct CompositePass {
+    /// `CompositeParams` of shaders/lib/alpha.wgsl (the specular stage computes α too).
+    pub params: wgpu::Buffer,
     pipeline: wgpu::ComputePipeline,
     group: wgpu::BindGroup,
     size: (u32, u32),
@@ -40,7 +42,8 @@ impl CompositePass {
     /// GPU timing label.
     pub const LABEL: &'static str = "composite";
 
-    /// Binds radiance, flags and photo; writes `targets`.
+    /// Binds radiance, flags, photo and the specular stage's light; writes `targets`.
+    #[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a different resource")]
     pub fn new(
         ctx: &GpuContext,
         frame: &wgpu::Buffer,
@@ -48,6 +51,7 @@ impl CompositePass {
         radiance: &Differential<Target>,
         flags: &Target,
         photo: &Target,
+        specular: &Target,
         targets: &CompositeTargets,
     ) -> Self {
         let device = &ctx.device;
@@ -73,6 +77,7 @@ impl CompositePass {
                 bind::texture(5, cs, unfilterable, d2),
                 bind::storage_texture(6, wgpu::TextureFormat::Rgba32Float),
                 bind::storage_texture(7, wgpu::TextureFormat::Rgba16Float),
+                bind::texture(8, cs, unfilterable, d2),
             ],
         );
         use wgpu::BindingResource::TextureView;
@@ -89,10 +94,11 @@ impl CompositePass {
                 TextureView(&photo.view),
                 TextureView(&targets.composite.view),
                 TextureView(&targets.alpha.view),
+                TextureView(&specular.view),
             ],
         );
         let pipeline = mrshade_gpu::shader::compute_pipeline(device, "composite", SHADER, &[&layout]);
-        Self { pipeline, group, size: targets.composite.size() }
+        Self { params, pipeline, group, size: targets.composite.size() }
     }
 
     /// Composites every output pixel.
@@ -106,5 +112,9 @@ impl CompositePass {
 }
 
 /// The composed WGSL module.
-pub const SHADER: &str =
-    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/gbuffer.wgsl", "composite.wgsl");
+pub const SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/alpha.wgsl",
+    "composite.wgsl",
+);

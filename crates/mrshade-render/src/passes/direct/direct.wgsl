@@ -52,7 +52,7 @@ fn load_surface(pixel: vec2i, p: vec3f) -> Surface {
 
 // Light through a transmissive surface (KHR_materials_transmission + _volume), seen along
 // the refracted view ray in the probe and attenuated by Beer–Lambert over the thickness.
-// Screen-space refraction of the photo is a later method; here glass refracts the probe.
+// Used where the specular stage does not trace the material (it is off, or the glass rough).
 fn refracted_probe(s: Surface, m: Material) -> vec3f {
     let t = m.transmission.x * (1.0 - s.metallic);
     if (t <= 0.0) { return vec3f(0.0); }
@@ -83,19 +83,17 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     s.transmission = m.transmission.x;
     let r_p = r_of(flags);
 
-    var l_rv = vec3f(0.0);
-    var l_r = vec3f(0.0);
-    for (var i = 0u; i < frame.counts.x; i++) {
-        let light = lights[i];
-        let incident = light_incident(light, p);
-        let l_o = brdf_cos(s, incident.l) * incident.radiance;
-        if (all(l_o == vec3f(0.0))) { continue; }
-        let v_r = shadow_visibility(light, light.info.y, p, s.normal);
-        let v_v = shadow_visibility(light, light.info.w, p, s.normal);
-        l_rv += l_o * min(v_r, v_v);
-        l_r += l_o * light.direction_real.w * r_p * v_r;
+    let punctual = punctual_radiance(s, r_p);
+    var l_rv = punctual.rv;
+    var l_r = punctual.r;
+    // Mirror-like and transmissive materials leave their specular reflection and refraction
+    // of the probe to the specular stage, which traces them (reflections spec §2.4).
+    var probe: vec3f;
+    if (is_traced(m)) {
+        probe = env_diffuse(frame, s, env_specular_albedo(s)) * s.occlusion;
+    } else {
+        probe = env_shading(frame, s, refracted_probe(s, m));
     }
-    let probe = env_shading(frame, s, refracted_probe(s, m));
     if (shadow_params.size.z == 1u) {
         // DIR: the probe's light shadowed by the environment VPLs' visibility ratios, plus the
         // VPLs' indirect light (whose L_r already carries r(p)). The ratios are per channel: a

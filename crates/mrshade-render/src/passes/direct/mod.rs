@@ -208,9 +208,11 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
     "../../../shaders/lib/env_visibility.wgsl",
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/shadow.wgsl",
+    "../../../shaders/lib/punctual.wgsl",
     "direct.wgsl",
 );

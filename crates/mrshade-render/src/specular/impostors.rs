@@ -1,0 +1,205 @@
+//! Impostor sets (reflections spec §2.16.1–§2.16.2): for every traced instance, every other
+//! instance seen from its centre through an orthographic camera fitted to that instance's
+//! box, rasterised into one slice of a shared visibility array each frame. A flat instance
+//! (a desk) is seen along its thin axis, the manual "world up" alignment the thesis used for
+//! its desk, chosen here automatically.
+
+use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::scene_gpu::Geometry;
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, UVec4, Vec3};
+use mrshade_gpu::GpuContext;
+use mrshade_gpu::timing::Recorder;
+use wgpu::util::DeviceExt;
+
+/// Mirrors `Impostor` in tracing.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuImpostor {
+    /// Orthographic, reversed depth (near → 1).
+    pub clip_from_world: Mat4,
+    /// Instance drawn, first texel of its slice, unused, unused.
+    pub info: UVec4,
+}
+
+/// An instance whose thinnest side is below this fraction of its longest is flat: it is seen
+/// along its thin axis, so that its one large face fills the impostor.
+const FLAT_RATIO: f32 = 0.25;
+
+/// The impostors of every traced instance.
+pub struct Impostors {
+    /// (traced instance, instance it sees) per impostor.
+    pairs: Vec<(usize, usize)>,
+    views: Vec<RasterView>,
+    /// `GpuImpostor` per impostor.
+    pub table: wgpu::Buffer,
+    /// Visibility texels of every slice, `resolution²` each.
+    pub texels: wgpu::Buffer,
+    /// Impostor range per instance: first, count (0 for untraced instances).
+    pub ranges: Vec<(u32, u32)>,
+}
+
+impl Impostors {
+    /// One impostor per (traced instance, other instance) pair, `resolution²` texels each.
+    pub fn new(
+        ctx: &GpuContext,
+        rasterizer: &Rasterizer,
+        geometry: &Geometry,
+        traced: &[bool],
+        resolution: u32,
+    ) -> Self {
+        let n = geometry.instance_count();
+        let mut pairs = Vec::new();
+        let mut ranges = vec![(0, 0); n];
+        for (s, _) in traced.iter().enumerate().filter(|(_, t)| **t) {
+            ranges[s] = (pairs.len() as u32, n as u32 - 1);
+            pairs.extend((0..n).filter(|&o| o != s).map(|o| (s, o)));
+        }
+        let slice = resolution as u64 * resolution as u64;
+        let texels = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("specular/impostor_texels"),
+            size: (pairs.len().max(1) as u64 * slice * 8).max(8),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let gpu = impostor_table(geometry, &pairs, resolution);
+        let views = pairs
+            .iter()
+            .zip(&gpu)
+            .enumerate()
+            .map(|(k, (&(_, seen), imp))| {
+                let (_, first, count) = geometry.instance_triangles(seen);
+                rasterizer.view(
+                    ctx,
+                    geometry,
+                    &format!("specular/impostor_{k}"),
+                    (resolution, resolution),
+                    Casters::Range { first, count },
+                    imp.clip_from_world,
+                    0.0,
+                    Some((&texels, k as u64 * slice * 8)),
+                )
+            })
+            .collect();
+        let table = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("specular/impostors"),
+            contents: bytemuck::cast_slice(&pad(gpu)),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        });
+        Self { pairs, views, table, texels, ranges }
+    }
+
+    /// Fits every impostor camera to where the instances are now.
+    pub fn update(&mut self, queue: &wgpu::Queue, geometry: &Geometry, resolution: u32) {
+        let gpu = impostor_table(geometry, &self.pairs, resolution);
+        for (view, imp) in self.views.iter_mut().zip(&gpu) {
+            view.set_clip_from_world(queue, imp.clip_from_world);
+        }
+        if !gpu.is_empty() {
+            queue.write_buffer(&self.table, 0, bytemuck::cast_slice(&gpu));
+        }
+    }
+
+    /// Rasterises every slice (the thesis refreshes them once per frame, §2.16.2).
+    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        if !self.views.is_empty() {
+            rasterizer.record(rec, "specular/impostors", &self.views);
+        }
+    }
+}
+
+fn pad(mut gpu: Vec<GpuImpostor>) -> Vec<GpuImpostor> {
+    if gpu.is_empty() {
+        gpu.push(GpuImpostor::zeroed());
+    }
+    gpu
+}
+
+fn impostor_table(geometry: &Geometry, pairs: &[(usize, usize)], resolution: u32) -> Vec<GpuImpostor> {
+    let slice = resolution * resolution;
+    pairs
+        .iter()
+        .enumerate()
+        .map(|(k, &(s, o))| GpuImpostor {
+            clip_from_world: impostor_clip_from_world(geometry.world_box(s), geometry.world_box(o)),
+            info: UVec4::new(o as u32, k as u32 * slice, 0, 0),
+        })
+        .collect()
+}
+
+/// The orthographic camera at the centre of `specular` looking at `seen` (or along its thin
+/// axis when it is flat), fitted to `seen`'s box, with reversed depth.
+pub fn impostor_clip_from_world(specular: (Vec3, Vec3), seen: (Vec3, Vec3)) -> Mat4 {
+    let eye = (specular.0 + specular.1) * 0.5;
+    let centre = (seen.0 + seen.1) * 0.5;
+    let extent = seen.1 - seen.0;
+    let thin = if extent.x <= extent.y && extent.x <= extent.z {
+        0
+    } else if extent.y <= extent.z {
+        1
+    } else {
+        2
+    };
+    let dir = if extent[thin] < FLAT_RATIO * extent.max_element() {
+        let mut axis = Vec3::ZERO;
+        axis[thin] = if centre[thin] - eye[thin] >= 0.0 { 1.0 } else { -1.0 };
+        axis
+    } else {
+        (centre - eye).try_normalize().unwrap_or(Vec3::NEG_Y)
+    };
+    let view = crate::scene_gpu::look_to(eye, dir);
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for i in 0..8 {
+        let corner = Vec3::new(
+            if i & 1 == 0 { seen.0.x } else { seen.1.x },
+            if i & 2 == 0 { seen.0.y } else { seen.1.y },
+            if i & 4 == 0 { seen.0.z } else { seen.1.z },
+        );
+        let v = view.transform_point3(corner);
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    // A margin so that faces on the box's sides stay inside the depth range.
+    let margin = 1e-3 * (hi - lo).max_element().max(1e-6);
+    let (lo, hi) = (lo - Vec3::splat(margin), hi + Vec3::splat(margin));
+    // View space looks down −z: depth = −z. Near and far swapped for reversed depth.
+    let proj = glam::camera::rh::proj::directx::orthographic(lo.x, hi.x, lo.y, hi.y, -lo.z, -hi.z);
+    proj * view
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_flat_desk_is_seen_from_above_with_its_top_nearest() {
+        let sphere = (Vec3::new(-0.1, 0.0, -0.1), Vec3::new(0.1, 0.2, 0.1));
+        let desk = (Vec3::new(-1.0, -0.05, -0.5), Vec3::new(1.0, 0.0, 0.5));
+        let m = impostor_clip_from_world(sphere, desk);
+        let top = m.project_point3(Vec3::new(0.3, 0.0, 0.2));
+        let bottom = m.project_point3(Vec3::new(0.3, -0.05, 0.2));
+        assert!(top.z > bottom.z, "reversed depth: the top ({}) is nearer than the bottom ({})", top.z, bottom.z);
+        for p in [desk.0, desk.1, Vec3::new(-1.0, 0.0, 0.5)] {
+            let c = m.project_point3(p);
+            assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{p} → {c}");
+        }
+        // Seen straight down: x and z of the desk map to the image, y to depth only.
+        let a = m.project_point3(Vec3::new(0.3, 0.0, 0.2));
+        let b = m.project_point3(Vec3::new(0.3, -0.05, 0.2));
+        assert!((a.truncate() - b.truncate()).length() < 1e-5);
+    }
+
+    #[test]
+    fn a_box_beside_is_seen_along_the_line_between_centres() {
+        let sphere = (Vec3::splat(-0.1), Vec3::splat(0.1));
+        let cube = (Vec3::new(0.9, -0.1, -0.1), Vec3::new(1.1, 0.1, 0.1));
+        let m = impostor_clip_from_world(sphere, cube);
+        let near = m.project_point3(Vec3::new(0.9, 0.0, 0.0));
+        let far = m.project_point3(Vec3::new(1.1, 0.0, 0.0));
+        assert!(near.z > far.z);
+        assert!(
+            near.truncate().length() < 1e-5 && far.truncate().length() < 1e-5,
+            "the centre line is the image centre"
+        );
+    }
+}

@@ -1,0 +1,469 @@
+//! The specular stage (Winklhofer's thesis and the TVCG paper; extraction
+//! `reflections-refractions-caustics.md`): reflections and refractions of mirror-like and
+//! transmissive surfaces, real or virtual, for every light-transport method. It reads the
+//! G-buffer, the method's `L_rv`/`L_r` and the photo, and hands the composite one buffer of
+//! camera values per traced pixel:
+//!
+//! 1. impostors: every other instance seen from each traced instance (spec §2.16.2);
+//! 2. camera views: the real-only visibility (back-projection's occlusion test, §2.8) and
+//!    the farthest surfaces of transmissive instances (Wyman's back faces, §2.12);
+//! 3. trace: reflection and refraction G-buffers (§2.10–§2.12, §2.16.3);
+//! 4. resolve: shading of the hit surfaces, back-projection into the photo and the
+//!    differential routing of each branch (§2.5–§2.9).
+
+pub mod impostors;
+pub mod interior;
+
+use crate::passes::direct::ShadowParams;
+use crate::passes::gbuffer::GBuffer;
+use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::scene_gpu::GpuScene;
+use crate::uniforms::FrameUniforms;
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, UVec4, Vec4};
+use impostors::Impostors;
+use interior::Interiors;
+use mrshade_core::Differential;
+use mrshade_core::flags::Realness;
+use mrshade_core::settings::{Refraction, RefractionPolicy, RenderSettings, SpecularSettings};
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{GpuContext, Target, bind, wgsl};
+use mrshade_scene::Scene;
+use wgpu::util::DeviceExt;
+
+/// Mirrors `SpecularParams` in tracing.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct SpecularParams {
+    steps: UVec4,
+    info: UVec4,
+    tolerances: Vec4,
+}
+
+const NO_VIEW: u32 = u32::MAX;
+
+/// Everything the stage reads, built before it.
+pub struct SpecularInputs<'a> {
+    /// The device.
+    pub ctx: &'a GpuContext,
+    /// The session's scene (its materials decide what is traced).
+    pub scene: &'a Scene,
+    /// All settings (`specular`, `shadows`).
+    pub settings: &'a RenderSettings,
+    /// `FrameUniforms` buffer.
+    pub frame: &'a wgpu::Buffer,
+    /// The frame uniforms at build time (sizes, first camera).
+    pub uniforms: &'a FrameUniforms,
+    /// Geometry, materials, lights and probe on the GPU.
+    pub gpu_scene: &'a GpuScene,
+    /// Shadow-map texels of the punctual lights.
+    pub shadow_maps: &'a wgpu::Buffer,
+    /// The compute rasteriser (impostors and camera views).
+    pub rasterizer: &'a Rasterizer,
+    /// The camera's G-buffer.
+    pub gbuffer: &'a GBuffer,
+    /// The camera's visibility buffer (triangle per pixel).
+    pub camera_visibility: &'a wgpu::Buffer,
+    /// The method's `L_rv`, `L_r`.
+    pub radiance: &'a Differential<Target>,
+    /// The photo at the output size.
+    pub photo: &'a Target,
+    /// The composite's α parameters.
+    pub composite_params: &'a wgpu::Buffer,
+    /// Where the stage writes its light (read by the composite).
+    pub output: &'a Target,
+}
+
+/// The reflection and refraction G-buffers of one frame (the stage's AOVs).
+pub struct SpecularGBuffers {
+    /// Hit position and triangle + 1 (0: left the scene; xyz is then the direction).
+    pub reflection_hit: Target,
+    /// Last ray direction; w: the roughness the probe is looked up with if the ray left.
+    pub reflection_dir: Target,
+    /// Accumulated Fresnel · transmittance (rgb), 1 in w where traced.
+    pub reflection_weight: Target,
+    /// The refraction branch's hit, as `reflection_hit`.
+    pub refraction_hit: Target,
+    /// The refraction branch's direction, as `reflection_dir`.
+    pub refraction_dir: Target,
+    /// The refraction branch's weight, as `reflection_weight`.
+    pub refraction_weight: Target,
+    /// Real pixels: where the same reflected ray ends in the real-only world.
+    pub reflection_real_hit: Target,
+    /// Real pixels: where the same refracted ray ends in the real-only world.
+    pub refraction_real_hit: Target,
+}
+
+impl SpecularGBuffers {
+    fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+        let usage =
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
+        let wide = wgpu::TextureFormat::Rgba32Float;
+        let half = wgpu::TextureFormat::Rgba16Float;
+        let t = |label: &str, format| Target::new_2d(device, &format!("specular/{label}"), size, format, usage);
+        Self {
+            reflection_hit: t("reflection_hit", wide),
+            reflection_dir: t("reflection_dir", half),
+            reflection_weight: t("reflection_weight", half),
+            refraction_hit: t("refraction_hit", wide),
+            refraction_dir: t("refraction_dir", half),
+            refraction_weight: t("refraction_weight", half),
+            reflection_real_hit: t("reflection_real_hit", wide),
+            refraction_real_hit: t("refraction_real_hit", wide),
+        }
+    }
+
+    fn all(&self) -> [&Target; 8] {
+        [
+            &self.reflection_hit,
+            &self.reflection_dir,
+            &self.reflection_weight,
+            &self.refraction_hit,
+            &self.refraction_dir,
+            &self.refraction_weight,
+            &self.reflection_real_hit,
+            &self.refraction_real_hit,
+        ]
+    }
+}
+
+/// The stage: built only when the scene holds a traced material and the stage is on.
+pub struct SpecularStage {
+    settings: SpecularSettings,
+    impostors: Impostors,
+    interiors: Interiors,
+    /// The camera's view of real geometry only, then the farthest surface of each
+    /// transmissive traced instance.
+    camera_views: Vec<RasterView>,
+    /// Reflection and refraction G-buffers.
+    pub gbuffers: SpecularGBuffers,
+    trace: wgpu::ComputePipeline,
+    trace_groups: [wgpu::BindGroup; 3],
+    resolve: wgpu::ComputePipeline,
+    resolve_groups: [wgpu::BindGroup; 4],
+    size: (u32, u32),
+}
+
+impl SpecularStage {
+    /// GPU timing label of the trace.
+    pub const TRACE_LABEL: &'static str = "specular/trace";
+    /// GPU timing label of the resolve.
+    pub const RESOLVE_LABEL: &'static str = "specular/resolve";
+
+    /// The stage for `inputs.scene`, or `None` when it traces nothing.
+    pub fn new(inputs: &SpecularInputs) -> Option<Self> {
+        let settings = inputs.settings.specular;
+        let geometry = &inputs.gpu_scene.geometry;
+        let material = |i: usize| &inputs.scene.materials[geometry.instance_triangles(i).0 as usize];
+        let traced: Vec<bool> = (0..geometry.instance_count())
+            .map(|i| {
+                let m = material(i);
+                settings.traces(m.metallic, m.roughness, m.transmission)
+            })
+            .collect();
+        if !traced.contains(&true) {
+            return None;
+        }
+        let ctx = inputs.ctx;
+        let device = &ctx.device;
+        let impostors = Impostors::new(ctx, inputs.rasterizer, geometry, &traced, settings.impostor_resolution);
+
+        // Camera views: real-only, then one farthest-surface view per transmissive instance,
+        // each at an aligned offset of one buffer.
+        let size = inputs.uniforms.internal_size();
+        let clip = inputs.uniforms.clip_from_world;
+        let near = inputs.uniforms.exposure_env.z;
+        let view_bytes = (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(256);
+        let transmissive: Vec<usize> =
+            (0..traced.len()).filter(|&i| traced[i] && material(i).transmission > 0.0).collect();
+        let farthest = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("specular/farthest_surfaces"),
+            size: view_bytes * transmissive.len().max(1) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let raster = inputs.rasterizer;
+        let mut camera_views = vec![raster.view(
+            ctx,
+            geometry,
+            "specular/real_only",
+            size,
+            Casters::Only(Realness::Real),
+            clip,
+            near,
+            None,
+        )];
+        let mut owners: Vec<UVec4> =
+            impostors.ranges.iter().map(|&(first, count)| UVec4::new(first, count, NO_VIEW, 0)).collect();
+        for (k, &i) in transmissive.iter().enumerate() {
+            let (_, first, count) = geometry.instance_triangles(i);
+            let label = format!("specular/farthest_{i}");
+            let target = Some((&farthest, k as u64 * view_bytes));
+            camera_views.push(raster.view(
+                ctx,
+                geometry,
+                &label,
+                size,
+                Casters::FarthestOf { first, count },
+                clip,
+                near,
+                target,
+            ));
+            owners[i].z = (k as u64 * view_bytes / 8) as u32;
+            owners[i].w = (settings.refraction == Refraction::Traced) as u32;
+        }
+        // Every traced instance's own BVH (self-reflections); the insides of transmissive
+        // ones are traced through it only with `refraction = "traced"`.
+        let traced_instances: Vec<usize> = (0..traced.len()).filter(|&i| traced[i]).collect();
+        let interiors = Interiors::new(device, inputs.scene, geometry, &traced_instances);
+        let storage = |label: &str, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
+        };
+        let owners = storage("specular/owners", bytemuck::cast_slice(&owners), wgpu::BufferUsages::STORAGE);
+        let params = SpecularParams {
+            steps: UVec4::new(
+                settings.impostor_resolution,
+                settings.linear_steps,
+                settings.binary_steps,
+                settings.max_bounces,
+            ),
+            info: UVec4::new((settings.refraction_policy == RefractionPolicy::Rendered) as u32, 0, 0, 0),
+            tolerances: Vec4::new(settings.backprojection_epsilon, 0.0, 0.0, 0.0),
+        };
+        let params = storage("specular/params", bytemuck::bytes_of(&params), wgpu::BufferUsages::UNIFORM);
+        let shadow_params = ShadowParams::new(&inputs.settings.shadows, false);
+        let shadow_params =
+            storage("specular/shadow_params", bytemuck::bytes_of(&shadow_params), wgpu::BufferUsages::UNIFORM);
+        let gbuffers = SpecularGBuffers::new(device, size);
+
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let uint = wgpu::TextureSampleType::Uint;
+        let d2 = wgpu::TextureViewDimension::D2;
+        let array = wgpu::TextureViewDimension::D2Array;
+        let filterable = wgpu::TextureSampleType::Float { filterable: true };
+        let storage_entries = |n: u32| (0..n).map(|i| bind::storage(i, cs)).collect::<Vec<_>>();
+        use wgpu::BindingResource::{Sampler, TextureView};
+        let s = inputs.gpu_scene;
+        let g = inputs.gbuffer;
+        let probe = &s.probe;
+        let scene_buffers = [
+            &geometry.instances,
+            &geometry.vertices,
+            &geometry.indices,
+            &geometry.triangles,
+            &s.materials.buffer,
+            &impostors.table,
+            &owners,
+            &impostors.texels,
+            inputs.camera_visibility,
+        ];
+
+        // Trace.
+        let trace_inputs = bind::layout(
+            device,
+            "specular/trace_inputs",
+            &[
+                bind::uniform(0, cs),
+                bind::uniform(1, cs),
+                bind::texture(2, cs, unfilterable, d2),
+                bind::texture(3, cs, unfilterable, d2),
+                bind::texture(4, cs, unfilterable, d2),
+                bind::texture(5, cs, unfilterable, d2),
+                bind::texture(6, cs, unfilterable, d2),
+                bind::texture(7, cs, uint, d2),
+                bind::texture_float(8, cs),
+                bind::sampler(9, cs, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
+        let trace_scene = bind::layout(device, "specular/trace_scene", &storage_entries(13));
+        let formats: Vec<_> = gbuffers.all().iter().map(|t| t.texture.format()).collect();
+        let outputs: Vec<_> = formats.iter().enumerate().map(|(i, &f)| bind::storage_texture(i as u32, f)).collect();
+        let trace_outputs = bind::layout(device, "specular/trace_outputs", &outputs);
+        let mut trace_buffers: Vec<wgpu::BindingResource> =
+            scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
+        let interior_buffers = [&interiors.table, &interiors.nodes, &interiors.triangles];
+        trace_buffers.push(farthest.as_entire_binding());
+        trace_buffers.extend(interior_buffers.iter().map(|b| b.as_entire_binding()));
+        let trace_groups = [
+            bind::group(
+                device,
+                "specular/trace_inputs",
+                &trace_inputs,
+                &[
+                    inputs.frame.as_entire_binding(),
+                    params.as_entire_binding(),
+                    TextureView(&g.depth_motion.view),
+                    TextureView(&g.albedo_metallic.view),
+                    TextureView(&g.normal_roughness.view),
+                    TextureView(&g.specular.view),
+                    TextureView(&g.emission_occlusion.view),
+                    TextureView(&g.flags.view),
+                    TextureView(&probe.dfg.view),
+                    Sampler(&probe.sampler),
+                ],
+            ),
+            bind::group(device, "specular/trace_scene", &trace_scene, &trace_buffers),
+            bind::group(
+                device,
+                "specular/trace_outputs",
+                &trace_outputs,
+                &gbuffers.all().map(|t| TextureView(&t.view)),
+            ),
+        ];
+        let trace = mrshade_gpu::shader::compute_pipeline(
+            device,
+            Self::TRACE_LABEL,
+            TRACE_SHADER,
+            &[&trace_inputs, &trace_scene, &trace_outputs],
+        );
+
+        // Resolve.
+        let mut resolve_entries = vec![
+            bind::uniform(0, cs),
+            bind::uniform(1, cs),
+            bind::uniform(2, cs),
+            bind::uniform(3, cs),
+            bind::texture(4, cs, uint, d2),
+        ];
+        resolve_entries.extend((5..=15).map(|b| bind::texture(b, cs, unfilterable, d2)));
+        let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
+        let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(16));
+        let resolve_probe = bind::layout(
+            device,
+            "specular/resolve_probe",
+            &[
+                bind::texture_float(0, cs),
+                bind::texture_float(1, cs),
+                bind::texture_float(2, cs),
+                bind::sampler(3, cs, wgpu::SamplerBindingType::Filtering),
+                bind::texture(4, cs, filterable, array),
+                bind::texture(5, cs, filterable, array),
+                bind::sampler(6, cs, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
+        let resolve_output = bind::layout(
+            device,
+            "specular/resolve_output",
+            &[bind::storage_texture(0, inputs.output.texture.format())],
+        );
+        let mut resolve_textures = vec![
+            inputs.frame.as_entire_binding(),
+            params.as_entire_binding(),
+            inputs.composite_params.as_entire_binding(),
+            shadow_params.as_entire_binding(),
+            TextureView(&g.flags.view),
+            TextureView(&inputs.radiance.rv.view),
+            TextureView(&inputs.radiance.r.view),
+            TextureView(&inputs.photo.view),
+        ];
+        resolve_textures.extend(gbuffers.all().map(|t| TextureView(&t.view)));
+        let mut resolve_buffers: Vec<wgpu::BindingResource> =
+            scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
+        resolve_buffers.extend([
+            camera_views[0].target.as_entire_binding(),
+            s.lights.as_entire_binding(),
+            s.shadow_matrices.as_entire_binding(),
+            inputs.shadow_maps.as_entire_binding(),
+        ]);
+        resolve_buffers.extend(interior_buffers.iter().map(|b| b.as_entire_binding()));
+        let resolve_groups = [
+            bind::group(device, "specular/resolve_inputs", &resolve_inputs, &resolve_textures),
+            bind::group(device, "specular/resolve_scene", &resolve_scene, &resolve_buffers),
+            bind::group(
+                device,
+                "specular/resolve_probe",
+                &resolve_probe,
+                &[
+                    TextureView(&probe.radiance.view),
+                    TextureView(&probe.irradiance.view),
+                    TextureView(&probe.dfg.view),
+                    Sampler(&probe.sampler),
+                    TextureView(&s.materials.srgb.view),
+                    TextureView(&s.materials.linear.view),
+                    Sampler(&s.materials.sampler),
+                ],
+            ),
+            bind::group(device, "specular/resolve_output", &resolve_output, &[TextureView(&inputs.output.view)]),
+        ];
+        let resolve = mrshade_gpu::shader::compute_pipeline(
+            device,
+            Self::RESOLVE_LABEL,
+            RESOLVE_SHADER,
+            &[&resolve_inputs, &resolve_scene, &resolve_probe, &resolve_output],
+        );
+        Some(Self {
+            settings,
+            impostors,
+            interiors,
+            camera_views,
+            gbuffers,
+            trace,
+            trace_groups,
+            resolve,
+            resolve_groups,
+            size,
+        })
+    }
+
+    /// Moves the impostor cameras to where the instances are and the camera views to
+    /// `clip_from_world` (this frame's camera, jittered like the G-buffer's).
+    pub fn prepare(&mut self, queue: &wgpu::Queue, geometry: &crate::scene_gpu::Geometry, clip_from_world: Mat4) {
+        self.impostors.update(queue, geometry, self.settings.impostor_resolution);
+        self.interiors.update(queue, geometry);
+        for view in &mut self.camera_views {
+            view.set_clip_from_world(queue, clip_from_world);
+        }
+    }
+
+    /// Impostors, camera views, trace, resolve.
+    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        self.impostors.record(rec, rasterizer);
+        rasterizer.record(rec, "specular/camera_views", &self.camera_views);
+        let groups = |pass: &mut wgpu::ComputePass, pipeline, groups: &[wgpu::BindGroup]| {
+            pass.set_pipeline(pipeline);
+            for (i, g) in groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
+            }
+        };
+        let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
+        rec.compute(Self::TRACE_LABEL, |pass| {
+            groups(pass, &self.trace, &self.trace_groups);
+            pass.dispatch_workgroups(w, h, 1);
+        });
+        rec.compute(Self::RESOLVE_LABEL, |pass| {
+            groups(pass, &self.resolve, &self.resolve_groups);
+            pass.dispatch_workgroups(w, h, 1);
+        });
+    }
+}
+
+/// The composed WGSL module of the trace.
+pub const TRACE_SHADER: &str = wgsl!(
+    "../../shaders/lib/frame.wgsl",
+    "../../shaders/lib/gbuffer.wgsl",
+    "../../shaders/lib/instance.wgsl",
+    "../../shaders/lib/triangles.wgsl",
+    "../../shaders/lib/brdf.wgsl",
+    "../../shaders/lib/sampling.wgsl",
+    "../../shaders/lib/dfg.wgsl",
+    "tracing.wgsl",
+    "trace.wgsl",
+);
+/// The composed WGSL module of the resolve.
+pub const RESOLVE_SHADER: &str = wgsl!(
+    "../../shaders/lib/frame.wgsl",
+    "../../shaders/lib/gbuffer.wgsl",
+    "../../shaders/lib/instance.wgsl",
+    "../../shaders/lib/triangles.wgsl",
+    "../../shaders/lib/brdf.wgsl",
+    "../../shaders/lib/dfg.wgsl",
+    "../../shaders/lib/env.wgsl",
+    "../../shaders/lib/lights.wgsl",
+    "../../shaders/lib/shadow.wgsl",
+    "../../shaders/lib/punctual.wgsl",
+    "../../shaders/lib/material_textures.wgsl",
+    "../../shaders/lib/alpha.wgsl",
+    "tracing.wgsl",
+    "resolve.wgsl",
+);

@@ -1,0 +1,207 @@
+// Resolve of the reflection and refraction G-buffers (reflections spec §2.5–§2.9): the light
+// that each traced pixel's branches bring, as camera values, composed by differential
+// rendering per branch. A branch ending on a real surface that the photo shows (inside the
+// frustum and not behind a real surface in the real-only depth, §2.8) takes the photo's
+// pixel there, the back-projection of §2.9, plus α'·(L'_rv − L'_r) of that surface: the
+// photo's own detail, with the virtual objects' shadows and light added. Where the photo
+// does not show it, the branch is rendered, `L'_rv`; a ray that leaves the scene sees the
+// probe (`L_env`, counted real). The surface's `L'_rv`, `L'_r` are the screen's buffers where
+// the camera sees that very surface (so the method's indirect light is in them), and are
+// otherwise shaded here with every punctual light and the probe, routed by the flags of the
+// light → surface part of the path only (§2.5: r(ls) ∧ r(p_hit)).
+//
+// Virtual pixels receive Σ w·C of their branches; real pixels (a real mirror or glass) the
+// difference Σ w·(C − C_r) against the same rays traced through the real-only world, which
+// is exactly zero when nothing virtual is seen or shadows what is seen.
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: SpecularParams;
+@group(0) @binding(2) var<uniform> composite_params: CompositeParams;
+@group(0) @binding(3) var<uniform> shadow_params: ShadowParams;
+@group(0) @binding(4) var gbuffer_flags: texture_2d<u32>;
+@group(0) @binding(5) var l_rv_texture: texture_2d<f32>;
+@group(0) @binding(6) var l_r_texture: texture_2d<f32>;
+@group(0) @binding(7) var photo_texture: texture_2d<f32>;
+@group(0) @binding(8) var reflection_hit: texture_2d<f32>;
+@group(0) @binding(9) var reflection_dir: texture_2d<f32>;
+@group(0) @binding(10) var reflection_weight: texture_2d<f32>;
+@group(0) @binding(11) var refraction_hit: texture_2d<f32>;
+@group(0) @binding(12) var refraction_dir: texture_2d<f32>;
+@group(0) @binding(13) var refraction_weight: texture_2d<f32>;
+@group(0) @binding(14) var reflection_real_hit: texture_2d<f32>;
+@group(0) @binding(15) var refraction_real_hit: texture_2d<f32>;
+
+@group(1) @binding(0) var<storage, read> instances: array<Instance>;
+@group(1) @binding(1) var<storage, read> vertices: array<f32>;
+@group(1) @binding(2) var<storage, read> indices: array<u32>;
+@group(1) @binding(3) var<storage, read> triangles: array<vec4u>;
+@group(1) @binding(4) var<storage, read> materials: array<Material>;
+@group(1) @binding(5) var<storage, read> impostors: array<Impostor>;
+@group(1) @binding(6) var<storage, read> owners: array<Owner>;
+@group(1) @binding(7) var<storage, read> impostor_texels: array<vec2u>;
+@group(1) @binding(8) var<storage, read> camera_visibility: array<vec2u>;
+@group(1) @binding(9) var<storage, read> real_visibility: array<vec2u>;
+@group(1) @binding(10) var<storage, read> lights: array<Light>;
+@group(1) @binding(11) var<storage, read> shadow_clip_from_world: array<mat4x4f>;
+@group(1) @binding(12) var<storage, read> shadow_texels: array<vec2u>;
+@group(1) @binding(13) var<storage, read> interiors: array<Interior>;
+@group(1) @binding(14) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(1) @binding(15) var<storage, read> bvh_triangles: array<u32>;
+
+@group(2) @binding(0) var env_radiance: texture_2d<f32>;
+@group(2) @binding(1) var env_irradiance: texture_2d<f32>;
+@group(2) @binding(2) var env_dfg_table: texture_2d<f32>;
+@group(2) @binding(3) var env_sampler: sampler;
+@group(2) @binding(4) var textures_srgb: texture_2d_array<f32>;
+@group(2) @binding(5) var textures_linear: texture_2d_array<f32>;
+@group(2) @binding(6) var texture_sampler: sampler;
+
+// rgb: camera values to add (virtual pixels) or the difference to add (real pixels)
+@group(3) @binding(0) var out_specular: texture_storage_2d<rgba16float, write>;
+
+// What one branch brings, in camera values: rendered, and (if the photo shows its surface)
+// back-projected.
+struct BranchLight {
+    rendered: vec3f,
+    photo_based: vec3f,
+    in_photo: bool,
+    // The real-only world's value with the same choice (for real pixels).
+    real: vec3f,
+}
+
+// The surface of `triangle` where the ray along `dir` meets it, shaded with every punctual
+// light and the unshadowed probe (`L'_rv`, `L'_r`).
+fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
+    let h = intersect(triangle - 1u, position - dir * 1e-3, dir);
+    let inst = instances[h.instance];
+    let m = materials[inst.info.x];
+    let bits = m.texture_info.y;
+    let zero = vec2f(0.0);
+    let base = m.base_color * sample_slot(true, m.texture_layers.x, bits, 0u, h.uv, zero, zero, vec4f(1.0));
+    let mr = sample_slot(false, m.texture_layers.y, bits, 1u, h.uv, zero, zero, vec4f(1.0));
+    var s: Surface;
+    s.position = h.position;
+    s.normal = facing_normal(h, -dir);
+    s.view = -dir;
+    s.base_color = base.rgb;
+    s.metallic = clamp(m.params.x * mr.b, 0.0, 1.0);
+    s.roughness = clamp(m.params.y * mr.g, 0.0, 1.0);
+    s.dielectric_f0 = m.dielectric.rgb;
+    s.dielectric_f90 = m.dielectric.a;
+    s.transmission = m.transmission.x;
+    s.emission = m.emissive.rgb;
+    s.occlusion = 1.0;
+    let r_p = select(0.0, 1.0, (inst.info.y & SURFACE_REAL) != 0u);
+    var light = punctual_radiance(s, r_p);
+    let probe = env_shading(frame, s, vec3f(0.0)) + s.emission;
+    light.rv += probe;
+    light.r += probe * r_p;
+    return light;
+}
+
+// Internal pixel and camera distance of world point `x` (pixel −1 when outside the frustum).
+fn project(x: vec3f) -> vec2i {
+    let clip = frame.clip_from_world * vec4f(x, 1.0);
+    if (clip.w <= 0.0) { return vec2i(-1); }
+    let ndc = clip.xy / clip.w;
+    let q = vec2i(floor(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2f(frame.size.xy)));
+    if (any(q < vec2i(0)) || any(q >= vec2i(frame.size.xy))) { return vec2i(-1); }
+    return q;
+}
+
+// Whether the visibility texel `texel` at pixel `q` shows the point `x` (same instance, depth
+// within the back-projection epsilon).
+fn shows(texel: vec2u, q: vec2i, x: vec3f, instance: u32) -> bool {
+    if (texel.x == 0u || triangles[texel.x - 1u].x != instance) { return false; }
+    let seen = world_from_pixel(frame, vec2f(q) + 0.5, visibility_depth(texel));
+    let eye = frame.camera_position.xyz;
+    return distance(seen, x) <= params.tolerances.x * distance(eye, x);
+}
+
+fn branch_light(hit: vec4f, dir: vec4f) -> BranchLight {
+    let exposure = frame.exposure_env.x;
+    var out: BranchLight;
+    out.in_photo = false;
+    if (hit.w == 0.0) {
+        // Left the scene: the probe (L_env), real in both worlds.
+        out.rendered = exposure * env_radiance_at(frame, dir.xyz, dir.w);
+        out.photo_based = out.rendered;
+        out.real = out.rendered;
+        return out;
+    }
+    let triangle = u32(hit.w);
+    let x = hit.xyz;
+    let instance = triangles[triangle - 1u].x;
+    let real_hit = instance_is_real(instance);
+    let traced_hit = is_traced(materials[instances[instance].info.x]);
+    let q = project(x);
+    var on_screen = false;
+    var photo = vec3f(0.0);
+    if (q.x >= 0) {
+        let index = u32(q.y) * frame.size.x + u32(q.x);
+        on_screen = !traced_hit && shows(camera_visibility[index], q, x, instance);
+        out.in_photo = real_hit && shows(real_visibility[index], q, x, instance);
+        photo = textureLoad(photo_texture, q / i32(frame.counts.z), 0).rgb;
+    }
+    var light: Radiance;
+    if (on_screen) {
+        light = Radiance(textureLoad(l_rv_texture, q, 0).rgb, textureLoad(l_r_texture, q, 0).rgb);
+    } else {
+        light = shade_hit(triangle, x, dir.xyz);
+    }
+    out.rendered = exposure * light.rv;
+    out.real = exposure * light.r;
+    if (out.in_photo) {
+        let a = alpha_of(composite_params, photo, exposure * light.r);
+        out.photo_based = photo + a * exposure * (light.rv - light.r);
+        out.real = photo;
+    }
+    return out;
+}
+
+// A branch's value in the real-only world (for real pixels): the rv branch's own when the
+// real-only ray ends in the same place, else that of where it ends.
+fn real_world(rv: BranchLight, rv_hit: vec4f, real_hit: vec4f, dir: vec4f) -> vec3f {
+    if (all(real_hit == rv_hit)) { return rv.real; }
+    return branch_light(real_hit, dir).real;
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.xy)) { return; }
+    let pixel = vec2i(id.xy);
+    let w_reflection = textureLoad(reflection_weight, pixel, 0);
+    let w_refraction = textureLoad(refraction_weight, pixel, 0);
+    if (w_reflection.a == 0.0 && w_refraction.a == 0.0) {
+        textureStore(out_specular, pixel, vec4f(0.0));
+        return;
+    }
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    let real_pixel = is_real(flags);
+    let reflection_dir4 = textureLoad(reflection_dir, pixel, 0);
+    let refraction_dir4 = textureLoad(refraction_dir, pixel, 0);
+    let reflection_hit4 = textureLoad(reflection_hit, pixel, 0);
+    let refraction_hit4 = textureLoad(refraction_hit, pixel, 0);
+    let reflection = branch_light(reflection_hit4, reflection_dir4);
+    let refraction = branch_light(refraction_hit4, refraction_dir4);
+    // Which background each branch uses (§2.8): policy B keeps each back-projection that
+    // works; policy A renders both as soon as one of them fails.
+    var use_photo_reflection = reflection.in_photo;
+    var use_photo_refraction = refraction.in_photo;
+    let both_exist = w_reflection.a > 0.0 && any(w_refraction.rgb > vec3f(0.0));
+    if (params.info.x == 1u && both_exist && (reflection.in_photo != refraction.in_photo)) {
+        use_photo_reflection = false;
+        use_photo_refraction = false;
+    }
+    let c_reflection = select(reflection.rendered, reflection.photo_based, use_photo_reflection);
+    let c_refraction = select(refraction.rendered, refraction.photo_based, use_photo_refraction);
+    var total = w_reflection.rgb * c_reflection + w_refraction.rgb * c_refraction;
+    if (real_pixel) {
+        // A real mirror or glass: only what the virtual content changes (the photo already
+        // shows the real reflection), against the same rays through the real-only world.
+        let real_reflection = real_world(reflection, reflection_hit4, textureLoad(reflection_real_hit, pixel, 0), reflection_dir4);
+        let real_refraction = real_world(refraction, refraction_hit4, textureLoad(refraction_real_hit, pixel, 0), refraction_dir4);
+        total -= w_reflection.rgb * real_reflection + w_refraction.rgb * real_refraction;
+    }
+    textureStore(out_specular, pixel, vec4f(total, 1.0));
+}

@@ -1,0 +1,283 @@
+// Ray intersection through depth-refined impostors (reflections spec §2.16.3), shared by the
+// trace pass (camera rays) and the resolve pass (the real-only world's rays). Each specular
+// instance owns a range of impostors: every other instance seen from its centre through an
+// orthographic camera, as a visibility texture of the compute rasteriser (reversed depth,
+// triangle + 1). A ray is clipped to an impostor's box, marched in `linear_steps`, and the
+// first under/overshoot pair is bisected `binary_steps` times; the triangle in the texel
+// found is then intersected exactly (the documents interpolate stored attributes instead),
+// and a hit whose triangle plane lies far from the marched depth is a depth discontinuity,
+// not a surface, and the march goes on. Bindings are declared by the including pass:
+// params, impostors, owners, impostor_texels, instances, vertices, indices, triangles, materials.
+
+struct SpecularParams {
+    // impostor resolution, linear steps, binary steps, max bounces
+    steps: vec4u,
+    // refraction policy (0 keep refraction, 1 rendered), unused…
+    info: vec4u,
+    // back-projection epsilon (fraction of the camera distance), unused…
+    tolerances: vec4f,
+}
+
+struct Impostor {
+    clip_from_world: mat4x4f,
+    // instance drawn, first texel of its slice, unused, unused
+    info: vec4u,
+}
+
+// Per instance: first impostor and impostor count of its set (0 if not traced), first texel of
+// its farthest-surface view (NO_VIEW if none), 1 if refraction is traced through its BVH.
+struct Owner {
+    info: vec4u,
+}
+
+const NO_VIEW: u32 = 0xffffffffu;
+
+// A traced ray's end: a triangle (+1; 0 = it left the scene) at `position`, or a direction.
+struct RayEnd {
+    triangle: u32,
+    position: vec3f,
+    dir: vec3f,
+    t: f32,
+    weight: vec3f,
+    path_real: bool,
+    // Roughness of the probe lookup when the ray leaves the scene (0: along `dir` itself).
+    roughness: f32,
+}
+
+fn impostor_texel(imp: Impostor, c: vec3f) -> vec2u {
+    let res = params.steps.x;
+    let uv = vec2f(c.x * 0.5 + 0.5, 0.5 - c.y * 0.5);
+    let xy = min(vec2u(max(uv, vec2f(0.0)) * f32(res)), vec2u(res - 1u));
+    return impostor_texels[imp.info.y + xy.y * res + xy.x];
+}
+
+// Signed depth of impostor-space point `c` behind the stored surface (> 0: behind, i.e.
+// farther from the impostor camera; reversed depth stores nearer surfaces as larger).
+fn behind(texel: vec2u, c: vec3f) -> f32 {
+    return bitcast<f32>(texel.y) - c.z;
+}
+
+// The nearest surface of impostor `imp` on the ray before `t_max`: (triangle + 1, t), or
+// triangle 0.
+fn march_impostor(imp: Impostor, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
+    let co = (imp.clip_from_world * vec4f(origin, 1.0)).xyz;
+    let cd = (imp.clip_from_world * vec4f(dir, 0.0)).xyz;
+    // Clip the ray to the impostor's box: x, y ∈ [−1, 1], reversed depth ∈ [0, 1].
+    var t0 = 0.0;
+    var t1 = t_max;
+    let lo = vec3f(-1.0, -1.0, 0.0);
+    for (var k = 0; k < 3; k++) {
+        if (abs(cd[k]) < 1e-20) {
+            if (co[k] < lo[k] || co[k] > 1.0) { return vec2f(0.0); }
+            continue;
+        }
+        let a = (lo[k] - co[k]) / cd[k];
+        let b = (1.0 - co[k]) / cd[k];
+        t0 = max(t0, min(a, b));
+        t1 = min(t1, max(a, b));
+    }
+    if (t0 >= t1) { return vec2f(0.0); }
+    let steps = params.steps.y;
+    let step = (t1 - t0) / f32(steps);
+    var prev_t = t0;
+    var prev_s = 0.0;
+    var prev_valid = false;
+    for (var i = 0u; i <= steps; i++) {
+        let t = t0 + step * f32(i);
+        let texel = impostor_texel(imp, co + cd * t);
+        if (texel.x == 0u) {
+            prev_valid = false;
+            prev_t = t;
+            continue;
+        }
+        let s = behind(texel, co + cd * t);
+        if (prev_valid && (s >= 0.0) != (prev_s >= 0.0)) {
+            // Bisect the pair; empty texels count as the near side.
+            var a = prev_t;
+            var b = t;
+            var triangle = texel.x;
+            for (var j = 0u; j < params.steps.z; j++) {
+                let mid = 0.5 * (a + b);
+                let cm = co + cd * mid;
+                let tm = impostor_texel(imp, cm);
+                let sm = select(prev_s, behind(tm, cm), tm.x != 0u);
+                if ((sm >= 0.0) == (s >= 0.0)) {
+                    b = mid;
+                    if (tm.x != 0u) { triangle = tm.x; }
+                } else {
+                    a = mid;
+                }
+            }
+            let h = intersect(triangle - 1u, origin, dir);
+            if (h.t > 0.0 && abs(h.t - b) <= 2.0 * step + 1e-4) {
+                return vec2f(f32(triangle), h.t);
+            }
+        }
+        prev_valid = true;
+        prev_s = s;
+        prev_t = t;
+    }
+    return vec2f(0.0);
+}
+
+fn instance_is_real(instance: u32) -> bool {
+    return (instances[instance].info.y & SURFACE_REAL) != 0u;
+}
+
+// Schlick's Fresnel of a dielectric of index `ior` (spec §2.1, f⊥ from the IOR with k = 0).
+fn fresnel_ior(ior: f32, cos_i: f32) -> f32 {
+    let f0 = (ior - 1.0) * (ior - 1.0) / ((ior + 1.0) * (ior + 1.0));
+    return f0 + (1.0 - f0) * pow(clamp(1.0 - cos_i, 0.0, 1.0), 5.0);
+}
+
+// Follows a ray from a surface of instance `owner` through the impostors of its set, on
+// through specular surfaces up to `max_bounces` (spec §2.3: accumulated Fresnel and
+// transmittance, path flag ANDed; a refractive second-order hit is bent at its first
+// boundary only, spec §2.16.3). `real_only` sees only real instances (the `L_r` world).
+fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool) -> RayEnd {
+    var end = RayEnd(0u, origin, dir, 0.0, vec3f(1.0), true, 0.0);
+    var o = origin;
+    var d = dir;
+    var range = owners[owner].info;
+    var current = owner;
+    for (var bounce = 0u; bounce <= params.steps.w; bounce++) {
+        var best = vec2f(0.0, 3.0e38);
+        for (var k = range.x; k < range.x + range.y; k++) {
+            let imp = impostors[k];
+            if (real_only && !instance_is_real(imp.info.x)) { continue; }
+            let hit = march_impostor(imp, o, d, best.y);
+            if (hit.x > 0.0 && hit.y < best.y) { best = hit; }
+        }
+        // The object itself (its BVH, when rigid): the self-reflections impostors miss
+        // (spec §2.16, limitation of [T §7]), e.g. a torus's inner side seeing its other side.
+        if (interiors[current].info.y == 1u && !(real_only && !instance_is_real(current))) {
+            let own = trace_interior(current, o, d, 1e-5 * max(1.0, length(o)));
+            if (own.x > 0.0 && own.y < best.y) { best = own; }
+        }
+        if (best.x == 0.0) {
+            end.triangle = 0u;
+            end.dir = d;
+            return end;
+        }
+        let triangle = u32(best.x);
+        let h = intersect(triangle - 1u, o, d);
+        end.triangle = triangle;
+        end.position = h.position;
+        end.dir = d;
+        end.t = best.y;
+        end.path_real = end.path_real && instance_is_real(h.instance);
+        let m = materials[instances[h.instance].info.x];
+        if (!is_traced(m) || bounce == params.steps.w) { return end; }
+        // A specular surface in the way: continue along its mirror or refracted direction.
+        let n = facing_normal(h, -d);
+        let cos_i = max(dot(n, -d), 0.0);
+        let transmission = m.transmission.x * (1.0 - m.params.x);
+        var next = reflect(d, n);
+        if (transmission > 0.0) {
+            let f = fresnel_ior(max(m.transmission.y, 1.0), cos_i);
+            let t = refract(d, n, 1.0 / max(m.transmission.y, 1.0));
+            if (any(t != vec3f(0.0))) {
+                next = t;
+                end.weight *= transmission * (1.0 - f) * m.base_color.rgb;
+            } else {
+                end.weight *= f;
+            }
+        } else {
+            let f0 = mix(m.dielectric.rgb, m.base_color.rgb, m.params.x);
+            end.weight *= f0 + (vec3f(1.0) - f0) * pow(1.0 - cos_i, 5.0);
+        }
+        o = h.position;
+        d = normalize(next);
+        range = owners[h.instance].info;
+        current = h.instance;
+    }
+    return end;
+}
+
+// Exact interiors of rigid transmissive instances (see interior.rs): a BVH per instance in
+// object space. Bindings declared by the including pass: interiors, bvh_nodes, bvh_triangles.
+struct BvhNode {
+    min: vec3f,
+    // Triangles of a leaf; 0 for an inner node (children at `first`, `first + 1`).
+    count: u32,
+    max: vec3f,
+    first: u32,
+}
+
+struct Interior {
+    object_from_world: mat4x4f,
+    // root node (NO_VIEW: none), 1 if the object can see itself (not convex), unused…
+    info: vec4u,
+}
+
+// Entry distance of the ray into box [lo, hi] before `t_max`, or −1.
+fn box_entry(o: vec3f, inv_d: vec3f, lo: vec3f, hi: vec3f, t_max: f32) -> f32 {
+    let a = (lo - o) * inv_d;
+    let b = (hi - o) * inv_d;
+    let t0 = max(max(min(a.x, b.x), min(a.y, b.y)), max(min(a.z, b.z), 0.0));
+    let t1 = min(min(max(a.x, b.x), max(a.y, b.y)), min(max(a.z, b.z), t_max));
+    return select(-1.0, t0, t0 <= t1);
+}
+
+// Distance along object-space ray (o, d) to triangle `triangle` (raw vertex positions,
+// Möller–Trumbore), or −1 where it misses.
+fn object_triangle_t(triangle: u32, o: vec3f, d: vec3f) -> f32 {
+    let tri = triangles[triangle];
+    var p: array<vec3f, 3>;
+    for (var k = 0u; k < 3u; k++) {
+        let v = (indices[tri.y + k] + tri.z) * 8u;
+        p[k] = vec3f(vertices[v], vertices[v + 1u], vertices[v + 2u]);
+    }
+    let e1 = p[1] - p[0];
+    let e2 = p[2] - p[0];
+    let pv = cross(d, e2);
+    let det = dot(e1, pv);
+    if (abs(det) < 1e-20) { return -1.0; }
+    let inv = 1.0 / det;
+    let tv = o - p[0];
+    let u = dot(tv, pv) * inv;
+    let qv = cross(tv, e1);
+    let v = dot(d, qv) * inv;
+    if (u < 0.0 || v < 0.0 || u + v > 1.0) { return -1.0; }
+    return dot(e2, qv) * inv;
+}
+
+// The nearest triangle of `instance` on the world ray past `t_min`: (triangle + 1, t). The
+// nearer child is visited first, so that farther boxes are culled by the hit found.
+fn trace_interior(instance: u32, origin: vec3f, dir: vec3f, t_min: f32) -> vec2f {
+    let it = interiors[instance];
+    var best = vec2f(0.0, 3.0e38);
+    if (it.info.x == NO_VIEW) { return best; }
+    // The object-space ray keeps the world ray's parameter t (the map is affine).
+    let o = (it.object_from_world * vec4f(origin, 1.0)).xyz;
+    let d = (it.object_from_world * vec4f(dir, 0.0)).xyz;
+    let inv_d = 1.0 / select(d, vec3f(1e-30), abs(d) < vec3f(1e-30));
+    var stack: array<u32, 32>;
+    var top = 1u;
+    stack[0] = it.info.x;
+    while (top > 0u) {
+        top -= 1u;
+        let node = bvh_nodes[stack[top]];
+        if (node.count == 0u) {
+            let a = bvh_nodes[node.first];
+            let b = bvh_nodes[node.first + 1u];
+            let ta = box_entry(o, inv_d, a.min, a.max, best.y);
+            let tb = box_entry(o, inv_d, b.min, b.max, best.y);
+            // Push the farther child first; a missed child (−1) is not pushed.
+            let a_first = ta >= 0.0 && (tb < 0.0 || ta <= tb);
+            let near = select(node.first + 1u, node.first, a_first);
+            let far = select(node.first, node.first + 1u, a_first);
+            let t_near = select(tb, ta, a_first);
+            let t_far = select(ta, tb, a_first);
+            if (t_far >= 0.0 && top < 32u) { stack[top] = far; top += 1u; }
+            if (t_near >= 0.0 && top < 32u) { stack[top] = near; top += 1u; }
+            continue;
+        }
+        for (var k = node.first; k < node.first + node.count; k++) {
+            let triangle = bvh_triangles[k];
+            let t = object_triangle_t(triangle, o, d);
+            if (t > t_min && t < best.y) { best = vec2f(f32(triangle + 1u), t); }
+        }
+    }
+    return best;
+}

@@ -1,0 +1,191 @@
+//! The specular stage (reflections spec §2.5–§2.16) on the test GPU: the exact invariant with
+//! real mirrors and glass, and known answers of the back-projection.
+
+mod common;
+
+use common::Setup;
+use glam::Vec3;
+use mrshade_core::settings::Method;
+use mrshade_render::uniforms::FrameUniforms;
+use mrshade_testkit::gltf::{cuboid, quad, quat};
+use serde_json::json;
+
+/// A mirror material (metal, smooth) and a clear glass one.
+fn mirror() -> serde_json::Value {
+    json!({"name": "mirror", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0, "roughnessFactor": 0.0}})
+}
+
+fn glass() -> serde_json::Value {
+    json!({"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.5},
+            "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationColor": [0.6, 0.9, 0.7], "attenuationDistance": 0.2}}})
+}
+
+/// A unique colour per photo pixel (red and green vary, blue constant).
+fn textured(x: u32, y: u32) -> [u8; 3] {
+    [(x * 4 + 20) as u8, (y * 4 + 20) as u8, 140]
+}
+
+#[test]
+fn real_mirrors_and_glass_without_virtual_content_return_the_photo() {
+    for method in Method::ALL {
+        let mut s = Setup::top_down(32);
+        s.photo = Box::new(textured);
+        s.probe = Some([0.6, 0.7, 0.9]);
+        s.top_toml = format!("method = \"{}\"\n", method.name());
+        s.extra_toml += "[output]\nframes = 2\n";
+        s.plane(2.0, 0.0, 0.4, true).light(
+            json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.9}}),
+            [0.2, 0.8, 0.0],
+            true,
+        );
+        let m = s.gltf.material(mirror());
+        let mesh = s.gltf.mesh(&cuboid([0.08; 3]), Some(m), true);
+        s.gltf.node(
+            json!({"name": "real-mirror", "mesh": mesh, "translation": [-0.15, 0.1, 0.0], "extras": {"real": true}}),
+        );
+        let g = s.gltf.material(glass());
+        let mesh = s.gltf.mesh(&cuboid([0.08; 3]), Some(g), true);
+        s.gltf.node(
+            json!({"name": "real-glass", "mesh": mesh, "translation": [0.15, 0.1, 0.05], "extras": {"real": true}}),
+        );
+        let r = s.render();
+        assert!(r.renderer.specular_traced(), "the stage runs for real mirrors and glass");
+        let photo: Vec<u8> = (0..32 * 32).flat_map(|i| textured(i % 32, i / 32)).collect();
+        let out = r.renderer.read_composite(&r.ctx).unwrap().image.to_srgb8();
+        assert_eq!(photo, out, "bit-exact photo with {}", method.name());
+    }
+}
+
+fn srgb_to_linear(c: u8) -> f32 {
+    let c = c as f32 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+#[test]
+fn a_virtual_planar_mirror_shows_the_photo_where_its_reflection_lands() {
+    const SIZE: u32 = 48;
+    // A virtual mirror tilted 60° about z above a real floor, seen from straight above: the
+    // reflected rays go down to the right and meet the floor at a point the photo shows.
+    let mut s = Setup::top_down(SIZE);
+    s.photo = Box::new(textured);
+    s.probe = Some([0.5, 0.5, 0.5]);
+    s.plane(2.0, 0.0, 0.5, true);
+    let m = s.gltf.material(mirror());
+    let mesh = s.gltf.mesh(&quad(0.05), Some(m), true);
+    let tilt = -60f32.to_radians();
+    let centre = [-0.2, 0.15, 0.0];
+    s.gltf.node(json!({"name": "mirror", "mesh": mesh, "translation": centre, "rotation": quat([0.0, 0.0, 1.0], tilt),
+        "extras": {"real": false}}));
+    let r = s.render();
+    let normal = Vec3::new(-tilt.sin(), tilt.cos(), 0.0);
+    let clip_from_world = FrameUniforms::new(&r.session, &r.session.view_at(0), 0, 1).clip_from_world;
+    let composite = r.renderer.read_composite(&r.ctx).unwrap().image;
+    let photo = |x: u32, y: u32| textured(x, y).map(srgb_to_linear);
+    let mut checked = 0;
+    // Mirror pixels: around the mirror's centre in the image.
+    for y in SIZE / 2 - 2..SIZE / 2 + 3 {
+        for x in 0..SIZE {
+            // The camera ray meets the mirror's plane…
+            let eye = Vec3::new(0.0, 1.0, 0.0);
+            let on_floor = r.world_on_plane(x, y, 0.0);
+            let d = (on_floor - eye).normalize();
+            let t = (Vec3::from(centre) - eye).dot(normal) / d.dot(normal);
+            let p = eye + d * t;
+            if (p - Vec3::from(centre)).length() > 0.03 {
+                continue; // not well inside the 10 cm mirror
+            }
+            // …and its reflection meets the floor where the photo is looked up.
+            let reflected = d - 2.0 * d.dot(normal) * normal;
+            let hit = p + reflected * (-p.y / reflected.y);
+            let ndc = clip_from_world.project_point3(hit);
+            let q = ((ndc.x * 0.5 + 0.5) * SIZE as f32, (0.5 - ndc.y * 0.5) * SIZE as f32);
+            let got = composite.get(x, y);
+            // The mirror's weight (split-sum albedo ≈ 1) is the same in every channel: the
+            // ratio to the right photo pixel is grey; to a neighbour it is not.
+            let ratio_spread = |px: u32, py: u32| {
+                let c = photo(px, py);
+                let k: Vec<f32> = (0..3).map(|i| got[i] / c[i]).collect();
+                (k[0] - k[2]).abs().max((k[1] - k[2]).abs()) / k[2]
+            };
+            let (qx, qy) = (q.0 as u32, q.1 as u32);
+            let best = [(0i32, 0i32), (-1, 0), (1, 0), (0, -1), (0, 1)]
+                .iter()
+                .map(|(dx, dy)| ratio_spread((qx as i32 + dx) as u32, (qy as i32 + dy) as u32))
+                .fold(f32::INFINITY, f32::min);
+            assert!(best < 0.02, "pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} scaled (spread {best})");
+            let k = got[2] / photo(qx, qy)[2];
+            assert!((0.8..=1.05).contains(&k), "pixel ({x}, {y}): mirror weight {k}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 5, "only {checked} mirror pixels checked");
+}
+
+#[test]
+fn a_virtual_glass_slab_shifts_the_photo_by_the_analytic_amount() {
+    for refraction in ["traced", "two-interfaces"] {
+        slab_shift(refraction);
+    }
+}
+
+fn slab_shift(refraction: &str) {
+    const SIZE: u32 = 48;
+    // A 30 cm glass slab (ior 1.5, no absorption) 5 cm above a real floor, seen from straight
+    // above: a view ray at angle θ leaves the slab parallel to itself, shifted sideways by
+    // d·sin θ·(1 − cos θ / √(n² − sin² θ)), and meets the floor there. No probe and no lights:
+    // only the refracted photo is left on the slab's pixels.
+    let (ior, thickness, centre_y) = (1.5f32, 0.3f32, 0.2f32);
+    let mut s = Setup::top_down(SIZE);
+    s.photo = Box::new(textured);
+    s.extra_toml += &format!("[specular]\nrefraction = \"{refraction}\"\n");
+    s.plane(2.0, 0.0, 0.5, true);
+    let m = s
+        .gltf
+        .material(json!({"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": ior}}}));
+    let mesh = s.gltf.mesh(&cuboid([0.5, thickness / 2.0, 0.5]), Some(m), true);
+    s.gltf.node(json!({"name": "slab", "mesh": mesh, "translation": [0.0, centre_y, 0.0], "extras": {"real": false}}));
+    let r = s.render();
+    let clip_from_world = FrameUniforms::new(&r.session, &r.session.view_at(0), 0, 1).clip_from_world;
+    let composite = r.renderer.read_composite(&r.ctx).unwrap().image;
+    let photo = |x: u32, y: u32| textured(x, y).map(srgb_to_linear);
+    let eye = Vec3::new(0.0, 1.0, 0.0);
+    let mut shifted = 0;
+    for (x, y) in [(6, 24), (10, 10), (24, 40), (40, 30), (36, 8), (24, 24)] {
+        let d = (r.world_on_plane(x, y, 0.0) - eye).normalize();
+        let top = eye + d * ((centre_y + thickness / 2.0 - eye.y) / d.y);
+        let sin_t = (1.0 - d.y * d.y).sqrt();
+        let cos_t = -d.y;
+        let shift = thickness * sin_t * (1.0 - cos_t / (ior * ior - sin_t * sin_t).sqrt());
+        let straight = eye + d * (-eye.y / d.y);
+        let toward_axis = Vec3::new(-d.x, 0.0, -d.z).normalize_or_zero();
+        let hit = straight + toward_axis * shift;
+        assert!(top.x.abs() < 0.5 && top.z.abs() < 0.5, "pixel ({x}, {y}) sees the slab");
+        let ndc = clip_from_world.project_point3(hit);
+        let q = ((ndc.x * 0.5 + 0.5) * SIZE as f32, (0.5 - ndc.y * 0.5) * SIZE as f32);
+        let got = composite.get(x, y);
+        let spread = |px: u32, py: u32| {
+            let c = photo(px, py);
+            let k: Vec<f32> = (0..3).map(|i| got[i] / c[i]).collect();
+            (k[0] - k[2]).abs().max((k[1] - k[2]).abs()) / k[2]
+        };
+        let (qx, qy) = (q.0 as u32, q.1 as u32);
+        let best = [(0i32, 0i32), (-1, 0), (1, 0), (0, -1), (0, 1)]
+            .iter()
+            .map(|(dx, dy)| spread((qx as i32 + dx) as u32, (qy as i32 + dy) as u32))
+            .fold(f32::INFINITY, f32::min);
+        assert!(
+            best < 0.02,
+            "{refraction}: pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} (spread {best})"
+        );
+        // Two interfaces of (1 − F) each at these angles: 0.85–0.93 of the photo.
+        let k = got[2] / photo(qx, qy)[2];
+        assert!((0.8..=0.95).contains(&k), "{refraction}: pixel ({x}, {y}): slab transmittance {k}");
+        // The floor seen by one pixel: 2·tan(0.5 rad) m over SIZE pixels.
+        if shift / (2.0 * 0.5f32.tan() / SIZE as f32) > 1.0 {
+            shifted += 1;
+        }
+    }
+    assert!(shifted >= 3, "the shift is large enough to tell apart at {shifted} of the pixels");
+}
