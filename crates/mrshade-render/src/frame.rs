@@ -61,7 +61,7 @@ impl Renderer {
         self.direct.record(rec);
         // 5. G-buffer, geometry, L_rv, L_r, photo ─▶ the light of reflections and refractions
         //    on traced pixels (impostors, reflection/refraction G-buffers, back-projection).
-        if let Some(specular) = &self.specular {
+        if let Some(specular) = &mut self.specular {
             specular.record(rec, raster);
         }
         // 6. L_rv, L_r, specular light, flags, photo ─▶ the composite and α.

@@ -37,6 +37,8 @@ pub struct Impostors {
     pub texels: wgpu::Buffer,
     /// Impostor range per instance: first, count (0 for untraced instances).
     pub ranges: Vec<(u32, u32)>,
+    /// The slices no longer show where the instances are (at first, and after a move).
+    stale: bool,
 }
 
 impl Impostors {
@@ -86,11 +88,16 @@ impl Impostors {
             contents: bytemuck::cast_slice(&pad(gpu)),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
-        Self { pairs, views, table, texels, ranges }
+        Self { pairs, views, table, texels, ranges, stale: true }
     }
 
-    /// Fits every impostor camera to where the instances are now.
+    /// Fits every impostor camera to where the instances are now, if any moved or deformed
+    /// (the thesis: an update "is only required for a change in the alignment", §2.16.2).
     pub fn update(&mut self, queue: &wgpu::Queue, geometry: &Geometry, resolution: u32) {
+        if !geometry.moved() && !self.stale {
+            return;
+        }
+        self.stale = true;
         let gpu = impostor_table(geometry, &self.pairs, resolution);
         for (view, imp) in self.views.iter_mut().zip(&gpu) {
             view.set_clip_from_world(queue, imp.clip_from_world);
@@ -100,11 +107,12 @@ impl Impostors {
         }
     }
 
-    /// Rasterises every slice (the thesis refreshes them once per frame, §2.16.2).
-    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
-        if !self.views.is_empty() {
+    /// Rasterises every slice when they are stale.
+    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        if self.stale && !self.views.is_empty() {
             rasterizer.record(rec, "specular/impostors", &self.views);
         }
+        self.stale = false;
     }
 }
 

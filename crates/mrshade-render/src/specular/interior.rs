@@ -45,6 +45,8 @@ pub struct Interiors {
     pub nodes: wgpu::Buffer,
     /// Global triangle ids, in leaf order.
     pub triangles: wgpu::Buffer,
+    /// Their object-space corners (3 `vec4` each), in the same order.
+    pub corners: wgpu::Buffer,
     /// `GpuInterior` per instance.
     pub table: wgpu::Buffer,
     roots: Vec<u32>,
@@ -57,6 +59,7 @@ impl Interiors {
     pub fn new(device: &wgpu::Device, scene: &Scene, geometry: &Geometry, instances: &[usize]) -> Self {
         let mut nodes: Vec<GpuBvhNode> = Vec::new();
         let mut triangle_list: Vec<u32> = Vec::new();
+        let mut corners: Vec<[f32; 4]> = Vec::new();
         let mut roots = vec![u32::MAX; geometry.instance_count()];
         let mut concave = vec![false; geometry.instance_count()];
         for &i in instances {
@@ -83,6 +86,11 @@ impl Interiors {
                 });
             }
             triangle_list.extend(bvh.primitive_indices.iter().map(|&t| first_triangle + t));
+            for &t in &bvh.primitive_indices {
+                for &v in &primitive.indices[3 * t as usize..3 * t as usize + 3] {
+                    corners.push(primitive.positions[v as usize].extend(0.0).to_array());
+                }
+            }
         }
         let buffer = |label: &str, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -95,14 +103,23 @@ impl Interiors {
             nodes.push(GpuBvhNode::zeroed());
             triangle_list.push(0);
         }
+        if corners.is_empty() {
+            corners.push([0.0; 4]);
+        }
         let table = pad(interior_table(&roots, &concave, geometry));
         Self {
             nodes: buffer("specular/interior_nodes", bytemuck::cast_slice(&nodes)),
             triangles: buffer("specular/interior_triangles", bytemuck::cast_slice(&triangle_list)),
+            corners: buffer("specular/interior_corners", bytemuck::cast_slice(&corners)),
             table: buffer("specular/interiors", bytemuck::cast_slice(&table)),
             roots,
             concave,
         }
+    }
+
+    /// Whether instance `i` has a BVH (it is traced and rigid).
+    pub fn has(&self, i: usize) -> bool {
+        self.roots[i] != u32::MAX
     }
 
     /// Whether any instance has a BVH.

@@ -174,8 +174,13 @@ impl SpecularStage {
         let clip = inputs.uniforms.clip_from_world;
         let near = inputs.uniforms.exposure_env.z;
         let view_bytes = (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(256);
-        let transmissive: Vec<usize> =
-            (0..traced.len()).filter(|&i| traced[i] && material(i).transmission > 0.0).collect();
+        let traced_instances: Vec<usize> = (0..traced.len()).filter(|&i| traced[i]).collect();
+        let interiors = Interiors::new(device, inputs.scene, geometry, &traced_instances);
+        // Wyman's farthest surfaces, for the transmissive instances not traced through a BVH.
+        let transmissive: Vec<usize> = (0..traced.len())
+            .filter(|&i| traced[i] && material(i).transmission > 0.0)
+            .filter(|&i| settings.refraction == Refraction::TwoInterfaces || !interiors.has(i))
+            .collect();
         let farthest = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("specular/farthest_surfaces"),
             size: view_bytes * transmissive.len().max(1) as u64,
@@ -210,12 +215,12 @@ impl SpecularStage {
                 target,
             ));
             owners[i].z = (k as u64 * view_bytes / 8) as u32;
-            owners[i].w = (settings.refraction == Refraction::Traced) as u32;
         }
-        // Every traced instance's own BVH (self-reflections); the insides of transmissive
-        // ones are traced through it only with `refraction = "traced"`.
-        let traced_instances: Vec<usize> = (0..traced.len()).filter(|&i| traced[i]).collect();
-        let interiors = Interiors::new(device, inputs.scene, geometry, &traced_instances);
+        if settings.refraction == Refraction::Traced {
+            for owner in &mut owners {
+                owner.w = 1;
+            }
+        }
         let storage = |label: &str, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
         };
@@ -276,13 +281,13 @@ impl SpecularStage {
                 bind::sampler(9, cs, wgpu::SamplerBindingType::Filtering),
             ],
         );
-        let trace_scene = bind::layout(device, "specular/trace_scene", &storage_entries(13));
+        let trace_scene = bind::layout(device, "specular/trace_scene", &storage_entries(14));
         let formats: Vec<_> = gbuffers.all().iter().map(|t| t.texture.format()).collect();
         let outputs: Vec<_> = formats.iter().enumerate().map(|(i, &f)| bind::storage_texture(i as u32, f)).collect();
         let trace_outputs = bind::layout(device, "specular/trace_outputs", &outputs);
         let mut trace_buffers: Vec<wgpu::BindingResource> =
             scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
-        let interior_buffers = [&interiors.table, &interiors.nodes, &interiors.triangles];
+        let interior_buffers = [&interiors.table, &interiors.nodes, &interiors.triangles, &interiors.corners];
         trace_buffers.push(farthest.as_entire_binding());
         trace_buffers.extend(interior_buffers.iter().map(|b| b.as_entire_binding()));
         let trace_groups = [
@@ -328,7 +333,7 @@ impl SpecularStage {
         ];
         resolve_entries.extend((5..=15).map(|b| bind::texture(b, cs, unfilterable, d2)));
         let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
-        let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(16));
+        let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(17));
         let resolve_probe = bind::layout(
             device,
             "specular/resolve_probe",
@@ -417,7 +422,7 @@ impl SpecularStage {
     }
 
     /// Impostors, camera views, trace, resolve.
-    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         self.impostors.record(rec, rasterizer);
         rasterizer.record(rec, "specular/camera_views", &self.camera_views);
         let groups = |pass: &mut wgpu::ComputePass, pipeline, groups: &[wgpu::BindGroup]| {

@@ -47,6 +47,7 @@
 @group(1) @binding(13) var<storage, read> interiors: array<Interior>;
 @group(1) @binding(14) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(1) @binding(15) var<storage, read> bvh_triangles: array<u32>;
+@group(1) @binding(16) var<storage, read> bvh_corners: array<vec4f>;
 
 @group(2) @binding(0) var env_radiance: texture_2d<f32>;
 @group(2) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -166,8 +167,37 @@ fn real_world(rv: BranchLight, rv_hit: vec4f, real_hit: vec4f, dir: vec4f) -> ve
     return branch_light(real_hit, dir).real;
 }
 
+// One branch of a pixel: its light, and (for real pixels) its real-only world's value. A
+// branch of weight alpha 0 was not traced: its targets hold stale values and are not read.
+struct Branch {
+    light: BranchLight,
+    real: vec3f,
+}
+
+fn traced_branch(
+    pixel: vec2i,
+    weight: vec4f,
+    hits: texture_2d<f32>,
+    dirs: texture_2d<f32>,
+    real_hits: texture_2d<f32>,
+    real_pixel: bool,
+) -> Branch {
+    var out: Branch;
+    out.light = BranchLight(vec3f(0.0), vec3f(0.0), false, vec3f(0.0));
+    out.real = vec3f(0.0);
+    if (weight.a == 0.0) { return out; }
+    let hit = textureLoad(hits, pixel, 0);
+    let dir = textureLoad(dirs, pixel, 0);
+    out.light = branch_light(hit, dir);
+    if (real_pixel) {
+        out.real = real_world(out.light, hit, textureLoad(real_hits, pixel, 0), dir);
+    }
+    return out;
+}
+
 @compute @workgroup_size(8, 8)
-fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    lane = local;
     if (any(id.xy >= frame.size.xy)) { return; }
     let pixel = vec2i(id.xy);
     let w_reflection = textureLoad(reflection_weight, pixel, 0);
@@ -176,32 +206,25 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         textureStore(out_specular, pixel, vec4f(0.0));
         return;
     }
-    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
-    let real_pixel = is_real(flags);
-    let reflection_dir4 = textureLoad(reflection_dir, pixel, 0);
-    let refraction_dir4 = textureLoad(refraction_dir, pixel, 0);
-    let reflection_hit4 = textureLoad(reflection_hit, pixel, 0);
-    let refraction_hit4 = textureLoad(refraction_hit, pixel, 0);
-    let reflection = branch_light(reflection_hit4, reflection_dir4);
-    let refraction = branch_light(refraction_hit4, refraction_dir4);
+    let real_pixel = is_real(textureLoad(gbuffer_flags, pixel, 0).r);
+    let reflection = traced_branch(pixel, w_reflection, reflection_hit, reflection_dir, reflection_real_hit, real_pixel);
+    let refraction = traced_branch(pixel, w_refraction, refraction_hit, refraction_dir, refraction_real_hit, real_pixel);
     // Which background each branch uses (§2.8): policy B keeps each back-projection that
     // works; policy A renders both as soon as one of them fails.
-    var use_photo_reflection = reflection.in_photo;
-    var use_photo_refraction = refraction.in_photo;
-    let both_exist = w_reflection.a > 0.0 && any(w_refraction.rgb > vec3f(0.0));
-    if (params.info.x == 1u && both_exist && (reflection.in_photo != refraction.in_photo)) {
+    var use_photo_reflection = reflection.light.in_photo;
+    var use_photo_refraction = refraction.light.in_photo;
+    let both_exist = w_reflection.a > 0.0 && w_refraction.a > 0.0 && any(w_refraction.rgb > vec3f(0.0));
+    if (params.info.x == 1u && both_exist && (use_photo_reflection != use_photo_refraction)) {
         use_photo_reflection = false;
         use_photo_refraction = false;
     }
-    let c_reflection = select(reflection.rendered, reflection.photo_based, use_photo_reflection);
-    let c_refraction = select(refraction.rendered, refraction.photo_based, use_photo_refraction);
+    let c_reflection = select(reflection.light.rendered, reflection.light.photo_based, use_photo_reflection);
+    let c_refraction = select(refraction.light.rendered, refraction.light.photo_based, use_photo_refraction);
     var total = w_reflection.rgb * c_reflection + w_refraction.rgb * c_refraction;
     if (real_pixel) {
         // A real mirror or glass: only what the virtual content changes (the photo already
         // shows the real reflection), against the same rays through the real-only world.
-        let real_reflection = real_world(reflection, reflection_hit4, textureLoad(reflection_real_hit, pixel, 0), reflection_dir4);
-        let real_refraction = real_world(refraction, refraction_hit4, textureLoad(refraction_real_hit, pixel, 0), refraction_dir4);
-        total -= w_reflection.rgb * real_reflection + w_refraction.rgb * real_refraction;
+        total -= w_reflection.rgb * reflection.real + w_refraction.rgb * refraction.real;
     }
     textureStore(out_specular, pixel, vec4f(total, 1.0));
 }

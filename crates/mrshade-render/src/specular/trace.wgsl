@@ -39,6 +39,7 @@
 @group(1) @binding(10) var<storage, read> interiors: array<Interior>;
 @group(1) @binding(11) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(1) @binding(12) var<storage, read> bvh_triangles: array<u32>;
+@group(1) @binding(13) var<storage, read> bvh_corners: array<vec4f>;
 
 @group(2) @binding(0) var out_reflection_hit: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(1) var out_reflection_dir: texture_storage_2d<rgba16float, write>;
@@ -69,10 +70,11 @@ fn store_branch(pixel: vec2i, refraction: bool, end: RayEnd) {
     }
 }
 
+// An untraced pixel: zero weights are all the resolve reads there (the other targets keep
+// stale values, which saves most of this pass's memory traffic on untraced pixels).
 fn store_nothing(pixel: vec2i) {
-    let none = RayEnd(0u, vec3f(0.0), vec3f(0.0), 0.0, vec3f(0.0), true, 0.0);
-    store_branch(pixel, false, none);
-    store_branch(pixel, true, none);
+    textureStore(out_reflection_weight, pixel, vec4f(0.0));
+    textureStore(out_refraction_weight, pixel, vec4f(0.0));
 }
 
 // A GGX microfacet normal around `n` for roughness `roughness` (the normal itself when smooth).
@@ -190,7 +192,8 @@ fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32) -> E
 }
 
 @compute @workgroup_size(8, 8)
-fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    lane = local;
     if (any(id.xy >= frame.size.xy)) { return; }
     let pixel = vec2i(id.xy);
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
@@ -220,18 +223,20 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (dot(reflected, s.normal) <= 0.0) { reflected = reflect(view_dir, s.normal); }
     let real_pixel = is_real(flags);
     let mirror = reflect(view_dir, s.normal);
-    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false), mirror, s.roughness);
+    // A dielectric reflects a few percent: its self-reflections are not worth a BVH traversal.
+    let transmission = m.transmission.x * (1.0 - s.metallic);
+    let sees_self = transmission <= 0.0;
+    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self), mirror, s.roughness);
     reflection.weight *= specular_albedo * occlusion;
     store_branch(pixel, false, reflection);
     if (real_pixel) {
-        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true), mirror, s.roughness);
+        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self), mirror, s.roughness);
         textureStore(out_reflection_real_hit, pixel, hit_texel(real_end));
     }
 
     // Refraction: what the lobe does not reflect, times transmission (KHR_materials_transmission).
-    let transmission = m.transmission.x * (1.0 - s.metallic);
     if (transmission <= 0.0) {
-        store_branch(pixel, true, RayEnd(0u, vec3f(0.0), vec3f(0.0), 0.0, vec3f(0.0), true, 0.0));
+        textureStore(out_refraction_weight, pixel, vec4f(0.0));
         return;
     }
     let ior = max(m.transmission.y, 1.0);
@@ -241,9 +246,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     } else {
         exit = refraction_exit(pixel, p1, view_dir, n, ior, owners[owner].info.z);
     }
-    var refraction = trace_ray(exit.position, exit.dir, owner, false);
+    var refraction = trace_ray(exit.position, exit.dir, owner, false, true);
     if (real_pixel) {
-        textureStore(out_refraction_real_hit, pixel, hit_texel(trace_ray(exit.position, exit.dir, owner, true)));
+        textureStore(out_refraction_real_hit, pixel, hit_texel(trace_ray(exit.position, exit.dir, owner, true, true)));
     }
     let absorption = select(
         vec3f(0.0),

@@ -133,8 +133,9 @@ fn fresnel_ior(ior: f32, cos_i: f32) -> f32 {
 // Follows a ray from a surface of instance `owner` through the impostors of its set, on
 // through specular surfaces up to `max_bounces` (spec §2.3: accumulated Fresnel and
 // transmittance, path flag ANDed; a refractive second-order hit is bent at its first
-// boundary only, spec §2.16.3). `real_only` sees only real instances (the `L_r` world).
-fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool) -> RayEnd {
+// boundary only, spec §2.16.3). `real_only` sees only real instances (the `L_r` world);
+// `first_sees_self` tests the first segment against the object itself too.
+fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self: bool) -> RayEnd {
     var end = RayEnd(0u, origin, dir, 0.0, vec3f(1.0), true, 0.0);
     var o = origin;
     var d = dir;
@@ -150,7 +151,8 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool) -> RayEnd {
         }
         // The object itself (its BVH, when rigid): the self-reflections impostors miss
         // (spec §2.16, limitation of [T §7]), e.g. a torus's inner side seeing its other side.
-        if (interiors[current].info.y == 1u && !(real_only && !instance_is_real(current))) {
+        let sees_self = bounce > 0u || first_sees_self;
+        if (sees_self && interiors[current].info.y == 1u && !(real_only && !instance_is_real(current))) {
             let own = trace_interior(current, o, d, 1e-5 * max(1.0, length(o)));
             if (own.x > 0.0 && own.y < best.y) { best = own; }
         }
@@ -195,7 +197,8 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool) -> RayEnd {
 }
 
 // Exact interiors of rigid transmissive instances (see interior.rs): a BVH per instance in
-// object space. Bindings declared by the including pass: interiors, bvh_nodes, bvh_triangles.
+// object space. Bindings declared by the including pass: interiors, bvh_nodes, bvh_triangles
+// (global triangle ids in leaf order) and bvh_corners (their object-space corners, 3 per).
 struct BvhNode {
     min: vec3f,
     // Triangles of a leaf; 0 for an inner node (children at `first`, `first + 1`).
@@ -219,28 +222,29 @@ fn box_entry(o: vec3f, inv_d: vec3f, lo: vec3f, hi: vec3f, t_max: f32) -> f32 {
     return select(-1.0, t0, t0 <= t1);
 }
 
-// Distance along object-space ray (o, d) to triangle `triangle` (raw vertex positions,
-// Möller–Trumbore), or −1 where it misses.
-fn object_triangle_t(triangle: u32, o: vec3f, d: vec3f) -> f32 {
-    let tri = triangles[triangle];
-    var p: array<vec3f, 3>;
-    for (var k = 0u; k < 3u; k++) {
-        let v = (indices[tri.y + k] + tri.z) * 8u;
-        p[k] = vec3f(vertices[v], vertices[v + 1u], vertices[v + 2u]);
-    }
-    let e1 = p[1] - p[0];
-    let e2 = p[2] - p[0];
+// Distance along object-space ray (o, d) to BVH triangle `k` (its object-space corners,
+// stored in leaf order; Möller–Trumbore), or −1 where it misses.
+fn object_triangle_t(k: u32, o: vec3f, d: vec3f) -> f32 {
+    let p0 = bvh_corners[3u * k].xyz;
+    let e1 = bvh_corners[3u * k + 1u].xyz - p0;
+    let e2 = bvh_corners[3u * k + 2u].xyz - p0;
     let pv = cross(d, e2);
     let det = dot(e1, pv);
     if (abs(det) < 1e-20) { return -1.0; }
     let inv = 1.0 / det;
-    let tv = o - p[0];
+    let tv = o - p0;
     let u = dot(tv, pv) * inv;
     let qv = cross(tv, e1);
     let v = dot(d, qv) * inv;
     if (u < 0.0 || v < 0.0 || u + v > 1.0) { return -1.0; }
     return dot(e2, qv) * inv;
 }
+
+// Traversal stacks in workgroup memory, one per invocation of the 8×8 workgroups (a dynamically
+// indexed private array would live in slow local memory). `lane` is set by the entry point.
+const STACK: u32 = 24u;
+var<workgroup> stacks: array<array<u32, STACK>, 64>;
+var<private> lane: u32;
 
 // The nearest triangle of `instance` on the world ray past `t_min`: (triangle + 1, t). The
 // nearer child is visited first, so that farther boxes are culled by the hit found.
@@ -252,12 +256,11 @@ fn trace_interior(instance: u32, origin: vec3f, dir: vec3f, t_min: f32) -> vec2f
     let o = (it.object_from_world * vec4f(origin, 1.0)).xyz;
     let d = (it.object_from_world * vec4f(dir, 0.0)).xyz;
     let inv_d = 1.0 / select(d, vec3f(1e-30), abs(d) < vec3f(1e-30));
-    var stack: array<u32, 32>;
     var top = 1u;
-    stack[0] = it.info.x;
+    stacks[lane][0] = it.info.x;
     while (top > 0u) {
         top -= 1u;
-        let node = bvh_nodes[stack[top]];
+        let node = bvh_nodes[stacks[lane][top]];
         if (node.count == 0u) {
             let a = bvh_nodes[node.first];
             let b = bvh_nodes[node.first + 1u];
@@ -269,14 +272,13 @@ fn trace_interior(instance: u32, origin: vec3f, dir: vec3f, t_min: f32) -> vec2f
             let far = select(node.first, node.first + 1u, a_first);
             let t_near = select(tb, ta, a_first);
             let t_far = select(ta, tb, a_first);
-            if (t_far >= 0.0 && top < 32u) { stack[top] = far; top += 1u; }
-            if (t_near >= 0.0 && top < 32u) { stack[top] = near; top += 1u; }
+            if (t_far >= 0.0 && top < STACK) { stacks[lane][top] = far; top += 1u; }
+            if (t_near >= 0.0 && top < STACK) { stacks[lane][top] = near; top += 1u; }
             continue;
         }
         for (var k = node.first; k < node.first + node.count; k++) {
-            let triangle = bvh_triangles[k];
-            let t = object_triangle_t(triangle, o, d);
-            if (t > t_min && t < best.y) { best = vec2f(f32(triangle + 1u), t); }
+            let t = object_triangle_t(k, o, d);
+            if (t > t_min && t < best.y) { best = vec2f(f32(bvh_triangles[k] + 1u), t); }
         }
     }
     return best;
