@@ -57,6 +57,26 @@ fn real_mirrors_and_glass_without_virtual_content_return_the_photo() {
     }
 }
 
+/// Where `ndc` (a world point projected by the camera) lands in a `size`² image, how far
+/// `got` is from a grey multiple of the photo pixel there or at one of its four neighbours
+/// (the smallest relative channel spread: a wrong pixel of the textured photo is not grey),
+/// and that multiple at the pixel itself (blue channel).
+fn photo_pixel_match(got: [f32; 3], ndc: Vec3, size: u32) -> ((f32, f32), f32, f32) {
+    let photo = |x: u32, y: u32| textured(x, y).map(srgb_to_linear);
+    let q = ((ndc.x * 0.5 + 0.5) * size as f32, (0.5 - ndc.y * 0.5) * size as f32);
+    let spread = |px: u32, py: u32| {
+        let c = photo(px, py);
+        let k: Vec<f32> = (0..3).map(|i| got[i] / c[i]).collect();
+        (k[0] - k[2]).abs().max((k[1] - k[2]).abs()) / k[2]
+    };
+    let (qx, qy) = (q.0 as u32, q.1 as u32);
+    let best = [(0i32, 0i32), (-1, 0), (1, 0), (0, -1), (0, 1)]
+        .iter()
+        .map(|(dx, dy)| spread((qx as i32 + dx) as u32, (qy as i32 + dy) as u32))
+        .fold(f32::INFINITY, f32::min);
+    (q, best, got[2] / photo(qx, qy)[2])
+}
+
 fn srgb_to_linear(c: u8) -> f32 {
     let c = c as f32 / 255.0;
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
@@ -81,7 +101,6 @@ fn a_virtual_planar_mirror_shows_the_photo_where_its_reflection_lands() {
     let normal = Vec3::new(-tilt.sin(), tilt.cos(), 0.0);
     let clip_from_world = FrameUniforms::new(&r.session, &r.session.view_at(0), 0, 1).clip_from_world;
     let composite = r.renderer.read_composite(&r.ctx).unwrap().image;
-    let photo = |x: u32, y: u32| textured(x, y).map(srgb_to_linear);
     let mut checked = 0;
     // Mirror pixels: around the mirror's centre in the image.
     for y in SIZE / 2 - 2..SIZE / 2 + 3 {
@@ -98,23 +117,10 @@ fn a_virtual_planar_mirror_shows_the_photo_where_its_reflection_lands() {
             // …and its reflection meets the floor where the photo is looked up.
             let reflected = d - 2.0 * d.dot(normal) * normal;
             let hit = p + reflected * (-p.y / reflected.y);
-            let ndc = clip_from_world.project_point3(hit);
-            let q = ((ndc.x * 0.5 + 0.5) * SIZE as f32, (0.5 - ndc.y * 0.5) * SIZE as f32);
             let got = composite.get(x, y);
-            // The mirror's weight (split-sum albedo ≈ 1) is the same in every channel: the
-            // ratio to the right photo pixel is grey; to a neighbour it is not.
-            let ratio_spread = |px: u32, py: u32| {
-                let c = photo(px, py);
-                let k: Vec<f32> = (0..3).map(|i| got[i] / c[i]).collect();
-                (k[0] - k[2]).abs().max((k[1] - k[2]).abs()) / k[2]
-            };
-            let (qx, qy) = (q.0 as u32, q.1 as u32);
-            let best = [(0i32, 0i32), (-1, 0), (1, 0), (0, -1), (0, 1)]
-                .iter()
-                .map(|(dx, dy)| ratio_spread((qx as i32 + dx) as u32, (qy as i32 + dy) as u32))
-                .fold(f32::INFINITY, f32::min);
+            // The mirror's weight (split-sum albedo ≈ 1) is the same in every channel.
+            let (q, best, k) = photo_pixel_match(got, clip_from_world.project_point3(hit), SIZE);
             assert!(best < 0.02, "pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} scaled (spread {best})");
-            let k = got[2] / photo(qx, qy)[2];
             assert!((0.8..=1.05).contains(&k), "pixel ({x}, {y}): mirror weight {k}");
             checked += 1;
         }
@@ -149,7 +155,6 @@ fn slab_shift(refraction: &str) {
     let r = s.render();
     let clip_from_world = FrameUniforms::new(&r.session, &r.session.view_at(0), 0, 1).clip_from_world;
     let composite = r.renderer.read_composite(&r.ctx).unwrap().image;
-    let photo = |x: u32, y: u32| textured(x, y).map(srgb_to_linear);
     let eye = Vec3::new(0.0, 1.0, 0.0);
     let mut shifted = 0;
     for (x, y) in [(6, 24), (10, 10), (24, 40), (40, 30), (36, 8), (24, 24)] {
@@ -162,25 +167,13 @@ fn slab_shift(refraction: &str) {
         let toward_axis = Vec3::new(-d.x, 0.0, -d.z).normalize_or_zero();
         let hit = straight + toward_axis * shift;
         assert!(top.x.abs() < 0.5 && top.z.abs() < 0.5, "pixel ({x}, {y}) sees the slab");
-        let ndc = clip_from_world.project_point3(hit);
-        let q = ((ndc.x * 0.5 + 0.5) * SIZE as f32, (0.5 - ndc.y * 0.5) * SIZE as f32);
         let got = composite.get(x, y);
-        let spread = |px: u32, py: u32| {
-            let c = photo(px, py);
-            let k: Vec<f32> = (0..3).map(|i| got[i] / c[i]).collect();
-            (k[0] - k[2]).abs().max((k[1] - k[2]).abs()) / k[2]
-        };
-        let (qx, qy) = (q.0 as u32, q.1 as u32);
-        let best = [(0i32, 0i32), (-1, 0), (1, 0), (0, -1), (0, 1)]
-            .iter()
-            .map(|(dx, dy)| spread((qx as i32 + dx) as u32, (qy as i32 + dy) as u32))
-            .fold(f32::INFINITY, f32::min);
+        let (q, best, k) = photo_pixel_match(got, clip_from_world.project_point3(hit), SIZE);
         assert!(
             best < 0.02,
             "{refraction}: pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} (spread {best})"
         );
         // Two interfaces of (1 − F) each at these angles: 0.85–0.93 of the photo.
-        let k = got[2] / photo(qx, qy)[2];
         assert!((0.8..=0.95).contains(&k), "{refraction}: pixel ({x}, {y}): slab transmittance {k}");
         // The floor seen by one pixel: 2·tan(0.5 rad) m over SIZE pixels.
         if shift / (2.0 * 0.5f32.tan() / SIZE as f32) > 1.0 {

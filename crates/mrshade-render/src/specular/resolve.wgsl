@@ -100,7 +100,7 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
     return light;
 }
 
-// Internal pixel and camera distance of world point `x` (pixel −1 when outside the frustum).
+// Internal pixel of world point `x` (−1 when outside the frustum).
 fn project(x: vec3f) -> vec2i {
     let clip = frame.clip_from_world * vec4f(x, 1.0);
     if (clip.w <= 0.0) { return vec2i(-1); }

@@ -39,7 +39,6 @@ struct RayEnd {
     dir: vec3f,
     t: f32,
     weight: vec3f,
-    path_real: bool,
     // Roughness of the probe lookup when the ray leaves the scene (0: along `dir` itself).
     roughness: f32,
 }
@@ -127,16 +126,17 @@ fn instance_is_real(instance: u32) -> bool {
 // Schlick's Fresnel of a dielectric of index `ior` (spec §2.1, f⊥ from the IOR with k = 0).
 fn fresnel_ior(ior: f32, cos_i: f32) -> f32 {
     let f0 = (ior - 1.0) * (ior - 1.0) / ((ior + 1.0) * (ior + 1.0));
-    return f0 + (1.0 - f0) * pow(clamp(1.0 - cos_i, 0.0, 1.0), 5.0);
+    return schlick(vec3f(f0), 1.0, cos_i).x;
 }
 
 // Follows a ray from a surface of instance `owner` through the impostors of its set, on
 // through specular surfaces up to `max_bounces` (spec §2.3: accumulated Fresnel and
-// transmittance, path flag ANDed; a refractive second-order hit is bent at its first
+// transmittance; the path flag FlagPathRV is not kept, as routing reads only the flags of
+// the light → hit-surface part, §2.5; a refractive second-order hit is bent at its first
 // boundary only, spec §2.16.3). `real_only` sees only real instances (the `L_r` world);
 // `first_sees_self` tests the first segment against the object itself too.
 fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self: bool) -> RayEnd {
-    var end = RayEnd(0u, origin, dir, 0.0, vec3f(1.0), true, 0.0);
+    var end = RayEnd(0u, origin, dir, 0.0, vec3f(1.0), 0.0);
     var o = origin;
     var d = dir;
     var range = owners[owner].info;
@@ -167,7 +167,6 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_
         end.position = h.position;
         end.dir = d;
         end.t = best.y;
-        end.path_real = end.path_real && instance_is_real(h.instance);
         let m = materials[instances[h.instance].info.x];
         if (!is_traced(m) || bounce == params.steps.w) { return end; }
         // A specular surface in the way: continue along its mirror or refracted direction.
@@ -186,7 +185,7 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_
             }
         } else {
             let f0 = mix(m.dielectric.rgb, m.base_color.rgb, m.params.x);
-            end.weight *= f0 + (vec3f(1.0) - f0) * pow(1.0 - cos_i, 5.0);
+            end.weight *= schlick(f0, 1.0, cos_i);
         }
         o = h.position;
         d = normalize(next);
