@@ -128,6 +128,18 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
+    // The photon G-buffers of every light in one buffer (specular/caustics): fewer photons.
+    let lights = scene.lights.len().max(1) as u64;
+    let photon_bytes = crate::specular::caustics::PHOTON_BYTES * crate::specular::caustics::PHOTON_KINDS;
+    let photons_fit = |res: u64| lights * res * res * photon_bytes <= max_binding;
+    if !fit.shrink("caustics.photon_resolution", &mut settings.caustics.photon_resolution, &photons_fit, 8) {
+        bail!(
+            "the scene's {} lights need more photon G-buffers than one GPU buffer of this device holds ({} MiB) \
+             even at 8×8 photons; remove lights or set caustics.enabled = false",
+            scene.lights.len(),
+            max_binding >> 20
+        );
+    }
     (crate::methods::entry(settings.method).fit)(&mut settings, &mut fit)?;
     check_scene_buffers(scene, device)?;
     let estimate = estimate(scene, &settings, &output);

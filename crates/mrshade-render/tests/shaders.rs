@@ -33,6 +33,8 @@ const MODULES: &[(&str, &str)] = &[
     ("encode", encode::SHADER),
     ("specular/trace", specular::TRACE_SHADER),
     ("specular/resolve", specular::RESOLVE_SHADER),
+    ("specular/photons", specular::caustics::PHOTONS_SHADER),
+    ("specular/caustic_splat", specular::caustics::SPLAT_SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -209,4 +211,20 @@ fn interiors_match() {
         size_of::<GpuInterior>(),
         &[("object_from_world", offset_of!(GpuInterior, object_from_world)), ("info", offset_of!(GpuInterior, info))],
     );
+}
+
+#[test]
+fn caustic_structs_match() {
+    use mrshade_render::specular::caustics::{CausticParams, PHOTON_BYTES, PHOTONS_SHADER};
+    assert_layout(
+        PHOTONS_SHADER,
+        "CausticParams",
+        size_of::<CausticParams>(),
+        &[
+            ("info", offset_of!(CausticParams, info)),
+            ("casters", offset_of!(CausticParams, casters)),
+            ("splat", offset_of!(CausticParams, splat)),
+        ],
+    );
+    assert_eq!(wgsl_layout(PHOTONS_SHADER, "Photon").0 as u64, PHOTON_BYTES);
 }

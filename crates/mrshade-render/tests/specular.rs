@@ -33,7 +33,8 @@ fn real_mirrors_and_glass_without_virtual_content_return_the_photo() {
         s.photo = Box::new(textured);
         s.probe = Some([0.6, 0.7, 0.9]);
         s.top_toml = format!("method = \"{}\"\n", method.name());
-        s.extra_toml += "[output]\nframes = 2\n";
+        // Caustics too: the real spot's photons through the real glass land alike in L_rv and L_r.
+        s.extra_toml += "[output]\nframes = 2\n[caustics]\nenabled = true\nphoton_resolution = 32\n";
         s.plane(2.0, 0.0, 0.4, true).light(
             json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.9}}),
             [0.2, 0.8, 0.0],
@@ -181,4 +182,48 @@ fn slab_shift(refraction: &str) {
         }
     }
     assert!(shifted >= 3, "the shift is large enough to tell apart at {shifted} of the pixels");
+}
+
+#[test]
+fn a_virtual_glass_ball_focuses_a_real_lamp_onto_the_floor_behind_it() {
+    const SIZE: u32 = 48;
+    // A 10 cm glass ball 25 cm above a real floor, a real point light up and to the side: the
+    // ray through the ball's centre is not bent, so the caustic is centred near where that
+    // ray meets the floor (a ball of n = 1.5 focuses 15 cm behind its centre; the floor, 34 cm
+    // behind it, sees the light spread around that point, out of the ball's own view shadow).
+    let render = |caustics: bool| {
+        let mut s = Setup::top_down(SIZE);
+        s.extra_toml += &format!("[caustics]\nenabled = {caustics}\nphoton_resolution = 64\n");
+        s.plane(2.0, 0.0, 0.5, true).light(json!({"type": "point", "intensity": 2.0}), [0.4, 0.7, 0.0], true);
+        let g = s.gltf.material(glass());
+        let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.1, 24), Some(g), true);
+        s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": [0.0, 0.25, 0.0], "extras": {"real": false}}));
+        let r = s.render();
+        let image = r.renderer.read_composite(&r.ctx).unwrap().image;
+        (r, image)
+    };
+    let (r, with) = render(true);
+    let (_, without) = render(false);
+    let light = Vec3::new(0.4, 0.7, 0.0);
+    let centre = Vec3::new(0.0, 0.25, 0.0);
+    let d = centre - light;
+    let chief = light + d * (-light.y / d.y);
+    let (mut best, mut best_at, mut total) = (0.0f32, Vec3::ZERO, 0.0f32);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let added = with.get(x, y)[1] - without.get(x, y)[1];
+            assert!(added > -1e-3, "pixel ({x}, {y}): the caustic takes light away ({added})");
+            total += added.max(0.0);
+            if added > best {
+                best = added;
+                best_at = r.world_on_plane(x, y, 0.0);
+            }
+        }
+    }
+    assert!(best > 0.05, "a caustic is visible (brightest addition {best})");
+    assert!(total > 5.0 * best, "the caustic covers more than a pixel ({total} vs peak {best})");
+    assert!(
+        (best_at - chief).length() < 0.1,
+        "the caustic's brightest point {best_at} is near the undeviated ray's floor point {chief}"
+    );
 }

@@ -4,6 +4,7 @@
 //! validated once (`validate`) and then passed by value to the passes. Every field documents
 //! its trade-off and, where the spec gives one, its source.
 
+mod caustics;
 mod composite;
 mod dir;
 mod limits;
@@ -11,6 +12,7 @@ mod reference;
 mod shadows;
 mod specular;
 
+pub use caustics::{CausticsSettings, Concentration};
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
@@ -82,6 +84,8 @@ pub struct RenderSettings {
     pub dir: DirSettings,
     /// Reflections and refractions (the specular stage, with every method).
     pub specular: SpecularSettings,
+    /// Caustics of the punctual lights through the specular stage's objects.
+    pub caustics: CausticsSettings,
     /// The CPU reference path tracer (`mrshade reference`).
     pub reference: ReferenceSettings,
 }
@@ -93,6 +97,7 @@ impl RenderSettings {
         self.shadows.validate()?;
         self.dir.validate()?;
         self.specular.validate()?;
+        self.caustics.validate()?;
         self.reference.validate()
     }
 }

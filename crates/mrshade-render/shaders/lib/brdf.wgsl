@@ -56,14 +56,26 @@ fn surface_f0(s: Surface) -> vec3f { return mix(s.dielectric_f0, s.base_color, s
 fn surface_f90(s: Surface) -> f32 { return mix(s.dielectric_f90, 1.0, s.metallic); }
 
 // f_r(l, v) · (n·l) for light arriving from direction `l`.
-fn brdf_cos(s: Surface, l: vec3f) -> vec3f {
+// f_r · cos θ_l split into its lobes.
+struct Lobes {
+    diffuse: vec3f,
+    specular: vec3f,
+}
+
+fn brdf_lobes(s: Surface, l: vec3f) -> Lobes {
+    var out: Lobes;
     let n_dot_l = dot(s.normal, l);
     let n_dot_v = max(dot(s.normal, s.view), 1e-4);
-    if (n_dot_l <= 0.0) { return vec3f(0.0); }
+    if (n_dot_l <= 0.0) { return out; }
     let h = normalize(l + s.view);
     let alpha = max(s.roughness * s.roughness, 1e-3);
     let f = schlick(surface_f0(s), surface_f90(s), max(dot(s.view, h), 0.0));
-    let specular = f * d_ggx(max(dot(s.normal, h), 0.0), alpha) * v_smith_ggx(n_dot_v, n_dot_l, alpha);
-    let diffuse = (vec3f(1.0) - f) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
-    return (diffuse + specular) * n_dot_l;
+    out.specular = f * d_ggx(max(dot(s.normal, h), 0.0), alpha) * v_smith_ggx(n_dot_v, n_dot_l, alpha) * n_dot_l;
+    out.diffuse = (vec3f(1.0) - f) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI * n_dot_l;
+    return out;
+}
+
+fn brdf_cos(s: Surface, l: vec3f) -> vec3f {
+    let lobes = brdf_lobes(s, l);
+    return lobes.diffuse + lobes.specular;
 }

@@ -30,4 +30,27 @@ struct Material {
 
 fn is_traced(m: Material) -> bool { return m.texture_info.w != 0u; }
 
+// The base color of a VPL on material `m` (base color `base`, metalness `metallic`): glTF's
+// transmission takes its share from the dielectric's diffuse lobe (KHR_materials_transmission),
+// so a glass VPL bounces only its Fresnel reflection. (As a white diffuse surface, a glass
+// bunny lit the desk around it like a lamp once its shadow let that light through.)
+fn vpl_base_color(m: Material, base: vec3f, metallic: f32) -> vec3f {
+    return base * (1.0 - m.transmission.x * (1.0 - metallic));
+}
+
+// The share of the light that a caster of material `m` lets through its shadow: 0 if opaque;
+// for a transmissive one, both interfaces' Fresnel transmittance averaged over the hemisphere
+// (Schlick's average F0 + (1 − F0)/21), its base color and Beer–Lambert over its thickness
+// (KHR_materials_volume). Light that glass refracts is not moved (punctual lights' caustics
+// do that), only not lost: under a probe, whose light comes from every direction, a glass
+// object's shadow is faint (the desk-glass answer), where an opaque caster's was dark.
+fn caster_transmittance(m: Material) -> f32 {
+    let t = m.transmission.x;
+    if (t <= 0.0) { return 0.0; }
+    let f0 = dot(m.dielectric.rgb, vec3f(1.0 / 3.0));
+    let through = 1.0 - (f0 + (1.0 - f0) / 21.0);
+    let beer = pow(max(m.attenuation_cutoff.rgb, vec3f(1e-6)), vec3f(m.transmission.z / m.transmission.w));
+    return clamp(t * through * through * dot(m.base_color.rgb * beer, vec3f(1.0 / 3.0)), 0.0, 1.0);
+}
+
 const NO_TEXTURE: u32 = 0xffffffffu;

@@ -12,7 +12,7 @@ struct BigTriangle {
     c: vec4f,
     // min x, min y, max x, max y (inclusive texels)
     bbox: vec4u,
-    // payload (triangle id + 1, or VPL index), unused…
+    // payload (triangle id + 1, or VPL index and caster material), unused…
     payload: vec4u,
 }
 

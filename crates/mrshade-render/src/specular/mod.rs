@@ -8,9 +8,12 @@
 //! 2. camera views: the real-only visibility (back-projection's occlusion test, §2.8) and
 //!    the farthest surfaces of transmissive instances (Wyman's back faces, §2.12);
 //! 3. trace: reflection and refraction G-buffers (§2.10–§2.12, §2.16.3);
-//! 4. resolve: shading of the hit surfaces, back-projection into the photo and the
-//!    differential routing of each branch (§2.5–§2.9).
+//! 4. caustics: photons of the punctual lights through the traced objects, splatted into a
+//!    caustic buffer (§2.17);
+//! 5. resolve: shading of the hit surfaces, back-projection into the photo and the
+//!    differential routing of each branch (§2.5–§2.9); the caustics on diffuse surfaces.
 
+pub mod caustics;
 pub mod impostors;
 pub mod interior;
 
@@ -25,7 +28,7 @@ use impostors::Impostors;
 use interior::Interiors;
 use mrshade_core::Differential;
 use mrshade_core::flags::Realness;
-use mrshade_core::settings::{Refraction, RefractionPolicy, RenderSettings, SpecularSettings};
+use mrshade_core::settings::{Concentration, Refraction, RefractionPolicy, RenderSettings, SpecularSettings};
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Scene;
@@ -137,6 +140,9 @@ pub struct SpecularStage {
     camera_views: Vec<RasterView>,
     /// Reflection and refraction G-buffers.
     pub gbuffers: SpecularGBuffers,
+    caustics: Option<caustics::Caustics>,
+    /// The caustic buffer (AOVs `caustics_rv`, `caustics_r`).
+    pub caustic_buffer: Differential<Target>,
     trace: wgpu::ComputePipeline,
     trace_groups: [wgpu::BindGroup; 3],
     resolve: wgpu::ComputePipeline,
@@ -232,14 +238,38 @@ impl SpecularStage {
                 settings.binary_steps,
                 settings.max_bounces,
             ),
-            info: UVec4::new((settings.refraction_policy == RefractionPolicy::Rendered) as u32, 0, 0, 0),
-            tolerances: Vec4::new(settings.backprojection_epsilon, 0.0, 0.0, 0.0),
+            info: UVec4::new(
+                (settings.refraction_policy == RefractionPolicy::Rendered) as u32,
+                (inputs.settings.caustics.concentration == Concentration::Thesis) as u32,
+                inputs.settings.caustics.thesis_photons,
+                0,
+            ),
+            tolerances: Vec4::new(settings.backprojection_epsilon, inputs.settings.caustics.thesis_base, 0.0, 0.0),
         };
         let params = storage("specular/params", bytemuck::bytes_of(&params), wgpu::BufferUsages::UNIFORM);
         let shadow_params = ShadowParams::new(&inputs.settings.shadows, false);
         let shadow_params =
             storage("specular/shadow_params", bytemuck::bytes_of(&shadow_params), wgpu::BufferUsages::UNIFORM);
         let gbuffers = SpecularGBuffers::new(device, size);
+        let caustic_buffer = caustics::caustic_buffer(device, size);
+        // Photons start on the rigid traced instances, whose BVHs they are traced into.
+        let casters: Vec<usize> = traced_instances.iter().copied().filter(|&i| interiors.has(i)).collect();
+        let caustics = caustics::Caustics::new(
+            ctx,
+            inputs.settings.caustics,
+            inputs.frame,
+            inputs.gpu_scene,
+            casters,
+            &caustics::CausticInputs {
+                specular_params: &params,
+                shadow_params: &shadow_params,
+                shadow_maps: inputs.shadow_maps,
+                impostors: [&impostors.table, &owners, &impostors.texels],
+                interiors: [&interiors.table, &interiors.nodes, &interiors.triangles, &interiors.corners],
+                depth_motion: &inputs.gbuffer.depth_motion,
+                normal_roughness: &inputs.gbuffer.normal_roughness,
+            },
+        );
 
         let cs = wgpu::ShaderStages::COMPUTE;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
@@ -331,7 +361,7 @@ impl SpecularStage {
             bind::uniform(3, cs),
             bind::texture(4, cs, uint, d2),
         ];
-        resolve_entries.extend((5..=15).map(|b| bind::texture(b, cs, unfilterable, d2)));
+        resolve_entries.extend((5..=18).map(|b| bind::texture(b, cs, unfilterable, d2)));
         let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
         let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(17));
         let resolve_probe = bind::layout(
@@ -363,6 +393,11 @@ impl SpecularStage {
             TextureView(&inputs.photo.view),
         ];
         resolve_textures.extend(gbuffers.all().map(|t| TextureView(&t.view)));
+        resolve_textures.extend([
+            TextureView(&g.albedo_metallic.view),
+            TextureView(&caustic_buffer.rv.view),
+            TextureView(&caustic_buffer.r.view),
+        ]);
         let mut resolve_buffers: Vec<wgpu::BindingResource> =
             scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
         resolve_buffers.extend([
@@ -403,6 +438,8 @@ impl SpecularStage {
             interiors,
             camera_views,
             gbuffers,
+            caustics,
+            caustic_buffer,
             trace,
             trace_groups,
             resolve,
@@ -416,6 +453,9 @@ impl SpecularStage {
     pub fn prepare(&mut self, queue: &wgpu::Queue, geometry: &crate::scene_gpu::Geometry, clip_from_world: Mat4) {
         self.impostors.update(queue, geometry, self.settings.impostor_resolution);
         self.interiors.update(queue, geometry);
+        if let Some(caustics) = &self.caustics {
+            caustics.prepare(queue, geometry);
+        }
         for view in &mut self.camera_views {
             view.set_clip_from_world(queue, clip_from_world);
         }
@@ -436,6 +476,9 @@ impl SpecularStage {
             groups(pass, &self.trace, &self.trace_groups);
             pass.dispatch_workgroups(w, h, 1);
         });
+        if let Some(caustics) = &self.caustics {
+            caustics.record(rec, &self.caustic_buffer);
+        }
         rec.compute(Self::RESOLVE_LABEL, |pass| {
             groups(pass, &self.resolve, &self.resolve_groups);
             pass.dispatch_workgroups(w, h, 1);

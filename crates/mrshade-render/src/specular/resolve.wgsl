@@ -30,6 +30,10 @@
 @group(0) @binding(13) var refraction_weight: texture_2d<f32>;
 @group(0) @binding(14) var reflection_real_hit: texture_2d<f32>;
 @group(0) @binding(15) var refraction_real_hit: texture_2d<f32>;
+@group(0) @binding(16) var gbuffer_albedo_metallic: texture_2d<f32>;
+// The caustic buffer (caustics/splat.wgsl): irradiance of the L_rv and of the L_r photons.
+@group(0) @binding(17) var caustics_rv: texture_2d<f32>;
+@group(0) @binding(18) var caustics_r: texture_2d<f32>;
 
 @group(1) @binding(0) var<storage, read> instances: array<Instance>;
 @group(1) @binding(1) var<storage, read> vertices: array<f32>;
@@ -195,6 +199,31 @@ fn traced_branch(
     return out;
 }
 
+// Irradiance of one half of the caustic buffer's texel `c`: as splatted (energy), or the
+// thesis's mean photon irradiance times k_c (Eq. T6.2).
+fn caustic_irradiance(c: vec4f) -> vec3f {
+    if (params.info.y == 0u) { return c.rgb; }
+    if (c.a < 0.5) { return vec3f(0.0); }
+    let b = params.tolerances.y;
+    let n_max = f32(params.info.z);
+    let k_c = (pow(b, min(c.a, n_max)) - 1.0) / (pow(b, n_max) - 1.0);
+    return c.rgb / c.a * k_c;
+}
+
+// The caustics on the diffuse surface at `pixel`, in camera values (spec §2.17.4–§2.17.5,
+// Eq. T5.4–T5.6): the caustic buffer's irradiance through the surface's diffuse BRDF, all
+// of the L_rv photons' on a virtual pixel, on a real one their difference from the L_r
+// photons' (the photo already shows the real caustics).
+fn caustic_light(pixel: vec2i, flags: u32) -> vec3f {
+    if (!is_covered(flags)) { return vec3f(0.0); }
+    let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
+    let m = materials[material_of(flags)];
+    let diffuse = am.rgb * (1.0 - am.a) * (1.0 - m.transmission.x) / PI;
+    var e = caustic_irradiance(textureLoad(caustics_rv, pixel, 0));
+    if (is_real(flags)) { e -= caustic_irradiance(textureLoad(caustics_r, pixel, 0)); }
+    return frame.exposure_env.x * diffuse * e;
+}
+
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
     lane = local;
@@ -202,11 +231,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let pixel = vec2i(id.xy);
     let w_reflection = textureLoad(reflection_weight, pixel, 0);
     let w_refraction = textureLoad(refraction_weight, pixel, 0);
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     if (w_reflection.a == 0.0 && w_refraction.a == 0.0) {
-        textureStore(out_specular, pixel, vec4f(0.0));
+        textureStore(out_specular, pixel, vec4f(caustic_light(pixel, flags), 0.0));
         return;
     }
-    let real_pixel = is_real(textureLoad(gbuffer_flags, pixel, 0).r);
+    let real_pixel = is_real(flags);
     let reflection = traced_branch(pixel, w_reflection, reflection_hit, reflection_dir, reflection_real_hit, real_pixel);
     let refraction = traced_branch(pixel, w_refraction, refraction_hit, refraction_dir, refraction_real_hit, real_pixel);
     // Which background each branch uses (§2.8): policy B keeps each back-projection that

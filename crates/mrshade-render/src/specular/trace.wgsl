@@ -105,16 +105,7 @@ fn farthest_triangle(view_offset: u32, pixel: vec2i) -> u32 {
     return farthest_texels[view_offset + u32(pixel.y) * frame.size.x + u32(pixel.x)].x;
 }
 
-// Where the refracted view ray leaves the object and in which direction (Wyman 2005, spec
-// §2.12), with the distance travelled inside.
-struct Exit {
-    position: vec3f,
-    dir: vec3f,
-    thickness: f32,
-    // Cosine at the exit interface (for its Fresnel term; 1 at a fallback).
-    cos_exit: f32,
-}
-
+// Where the refracted view ray leaves the object by Wyman's two interfaces (spec §2.12).
 fn refraction_exit(pixel: vec2i, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32, view_offset: u32) -> Exit {
     let rt = normalize(refract(view_dir, n1, 1.0 / ior));
     var exit = Exit(p1, rt, 0.0, 1.0);
@@ -155,39 +146,6 @@ fn refraction_exit(pixel: vec2i, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32
     } else {
         exit.dir = normalize(out);
     }
-    return exit;
-}
-
-// Internal events a traced refraction follows before it gives up and leaves by the tangent.
-const MAX_INTERNAL: u32 = 8u;
-
-// The refracted view ray followed exactly through the instance's inside: at each internal
-// hit it leaves (weighted by 1 − F there) unless it is totally reflected, which sends it on
-// inside. The internally reflected part F of a leaving ray is dropped.
-fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32) -> Exit {
-    let eps = 1e-5 * max(1.0, length(p1));
-    var d = normalize(refract(view_dir, n1, 1.0 / ior));
-    var o = p1;
-    var exit = Exit(p1, d, 0.0, 1.0);
-    for (var k = 0u; k < MAX_INTERNAL; k++) {
-        let hit = trace_interior(owner, o, d, eps);
-        if (hit.x == 0.0) { break; }
-        let h = intersect(u32(hit.x) - 1u, o, d);
-        exit.thickness += hit.y;
-        o = h.position;
-        let n_out = facing_normal(h, d);
-        let out = refract(d, -n_out, ior);
-        if (any(out != vec3f(0.0))) {
-            exit.position = o;
-            exit.dir = normalize(out);
-            exit.cos_exit = clamp(dot(d, n_out), 0.0, 1.0);
-            return exit;
-        }
-        d = reflect(d, -n_out);
-    }
-    // Still inside: leave along the last direction, as Wyman's total-reflection fallback.
-    exit.position = o;
-    exit.dir = d;
     return exit;
 }
 
@@ -250,13 +208,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     if (real_pixel) {
         textureStore(out_refraction_real_hit, pixel, hit_texel(trace_ray(exit.position, exit.dir, owner, true, true)));
     }
-    let absorption = select(
-        vec3f(0.0),
-        -log(max(m.attenuation_cutoff.rgb, vec3f(1e-4))) / m.transmission.w,
-        m.transmission.w < 1e29,
-    );
-    let exit_fresnel = fresnel_ior(ior, exit.cos_exit);
-    refraction.weight *= transmission * (vec3f(1.0) - specular_albedo) * (1.0 - exit_fresnel) * s.base_color
-        * exp(-absorption * exit.thickness) * occlusion;
+    refraction.weight *= transmission * (vec3f(1.0) - specular_albedo) * exit_transmittance(m, s.base_color, exit, ior)
+        * occlusion;
     store_branch(pixel, true, refraction);
 }

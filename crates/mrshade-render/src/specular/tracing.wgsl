@@ -195,6 +195,60 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_
     return end;
 }
 
+// Where the refracted view ray leaves the object and in which direction (traced, or by Wyman's
+// two interfaces, spec §2.12), with the distance travelled inside.
+struct Exit {
+    position: vec3f,
+    dir: vec3f,
+    thickness: f32,
+    // Cosine at the exit interface (for its Fresnel term; 1 at a fallback).
+    cos_exit: f32,
+}
+
+// Internal events a traced refraction follows before it gives up and leaves by the tangent.
+const MAX_INTERNAL: u32 = 8u;
+
+// The refracted view ray followed exactly through the instance's inside: at each internal
+// hit it leaves (weighted by 1 − F there) unless it is totally reflected, which sends it on
+// inside. The internally reflected part F of a leaving ray is dropped.
+fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32) -> Exit {
+    let eps = 1e-5 * max(1.0, length(p1));
+    var d = normalize(refract(view_dir, n1, 1.0 / ior));
+    var o = p1;
+    var exit = Exit(p1, d, 0.0, 1.0);
+    for (var k = 0u; k < MAX_INTERNAL; k++) {
+        let hit = trace_interior(owner, o, d, eps);
+        if (hit.x == 0.0) { break; }
+        let h = intersect(u32(hit.x) - 1u, o, d);
+        exit.thickness += hit.y;
+        o = h.position;
+        let n_out = facing_normal(h, d);
+        let out = refract(d, -n_out, ior);
+        if (any(out != vec3f(0.0))) {
+            exit.position = o;
+            exit.dir = normalize(out);
+            exit.cos_exit = clamp(dot(d, n_out), 0.0, 1.0);
+            return exit;
+        }
+        d = reflect(d, -n_out);
+    }
+    // Still inside: leave along the last direction, as Wyman's total-reflection fallback.
+    exit.position = o;
+    exit.dir = d;
+    return exit;
+}
+
+// What the inside and the exit let through of a refracted ray (base color `base`): the exit's
+// Fresnel and Beer–Lambert over the distance travelled (KHR_materials_volume).
+fn exit_transmittance(m: Material, base: vec3f, exit: Exit, ior: f32) -> vec3f {
+    let absorption = select(
+        vec3f(0.0),
+        -log(max(m.attenuation_cutoff.rgb, vec3f(1e-4))) / m.transmission.w,
+        m.transmission.w < 1e29,
+    );
+    return (1.0 - fresnel_ior(ior, exit.cos_exit)) * base * exp(-absorption * exit.thickness);
+}
+
 // Exact interiors of rigid transmissive instances (see interior.rs): a BVH per instance in
 // object space. Bindings declared by the including pass: interiors, bvh_nodes, bvh_triangles
 // (global triangle ids in leaf order) and bvh_corners (their object-space corners, 3 per).

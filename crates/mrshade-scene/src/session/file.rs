@@ -6,7 +6,8 @@ use super::output::OutputFile;
 use crate::sequence::{DEFAULT_FPS, DEFAULT_SAMPLES};
 use anyhow::{Context, Result};
 use mrshade_core::settings::{
-    CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, ShadowSettings, SpecularSettings,
+    CausticsSettings, CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, ShadowSettings,
+    SpecularSettings,
 };
 use serde::Deserialize;
 
@@ -31,6 +32,8 @@ pub(super) struct SessionFile {
     pub(super) dir: DirSettings,
     #[serde(default)]
     pub(super) specular: SpecularSettings,
+    #[serde(default)]
+    pub(super) caustics: CausticsSettings,
     #[serde(default)]
     pub(super) reference: ReferenceSettings,
     #[serde(default)]

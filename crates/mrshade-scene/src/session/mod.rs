@@ -22,6 +22,7 @@
 //! [shadows]                     # optional: see mrshade_core::settings::ShadowSettings
 //! [dir]                         # optional: see mrshade_core::settings::DirSettings
 //! [specular]                    # optional: see mrshade_core::settings::SpecularSettings
+//! [caustics]                    # optional: see mrshade_core::settings::CausticsSettings
 //! [reference]                   # optional: see mrshade_core::settings::ReferenceSettings
 //! [sequence]                    # optional: a posed image sequence (see crate::sequence)
 //! transforms = "transforms.json" # nerfstudio / instant-ngp poses and photos, instead of `background`
@@ -247,6 +248,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         shadows: file.shadows,
         dir: file.dir,
         specular: file.specular,
+        caustics: file.caustics,
         reference: file.reference,
     };
     settings.validate().map_err(anyhow::Error::msg)?;

@@ -46,7 +46,8 @@ struct IndirectParams {
 @group(3) @binding(0) var previous_l_rv: texture_2d<f32>;
 @group(3) @binding(1) var previous_l_r: texture_2d<f32>;
 
-// Visibility of VPL `index` at receiver `p` (normal `n`) past the casters of one atlas.
+// Visibility of VPL `index` at receiver `p` (normal `n`) past the casters of one atlas: 0 or
+// 1, or the transmittance of a transmissive nearest caster.
 // Offsets and biases keep a surface from shadowing itself; they are needed only where the
 // receiver's own surface is in the atlas (a real receiver in the real atlas, a virtual one
 // in the virtual atlas). Elsewhere they would only grow the other atlas's shadows, most
@@ -79,7 +80,18 @@ fn ism_visible(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_
     if (!c.valid) { return 1.0; }
     let i = ism_texel_index(index, c.uv, ism);
     let stored = select(ism_real[i], ism_virtual[i], virtual_atlas);
-    return select(0.0, 1.0, ism_decode(stored) >= c.depth - limit_bias);
+    if (ism_decode(stored) >= c.depth - limit_bias) { return 1.0; }
+    if (!ism_caster_known(stored)) { return 0.0; }
+    return caster_transmittance(materials[ism_caster_material(stored)]);
+}
+
+// f_r · cos θ_l of the receiver toward a VPL. On a surface the specular stage traces (a mirror,
+// a glass, a smooth metal) the specular lobe is the stage's: its reflection of the surfaces
+// these VPLs light. Here, a near-delta GGX lobe turned each VPL into a firefly that the
+// interleaving spread into a block (desk-mirror's sphere), and counted that light twice.
+fn receiver_brdf_cos(s: Surface, l: vec3f, traced: bool) -> vec3f {
+    let lobes = brdf_lobes(s, l);
+    return select(lobes.diffuse + lobes.specular, lobes.diffuse, traced);
 }
 
 // (V_r, V_v) of VPL `index` at receiver `p` with normal `n`, on a real or virtual surface.
@@ -108,7 +120,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         textureLoad(gbuffer_normal_roughness, pixel, 0),
         textureLoad(gbuffer_specular, pixel, 0),
     );
-    s.transmission = materials[material_of(flags)].transmission.x;
+    let m = materials[material_of(flags)];
+    s.transmission = m.transmission.x;
+    let traced = is_traced(m);
     let r_p = r_of(flags);
     let receiver_real = is_real(flags);
 
@@ -134,7 +148,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             if (dot(s.normal, l) <= 0.0) { continue; }
             let emission = vpl_emission(v, -l);
             if (all(emission == vec3f(0.0))) { continue; }
-            let transfer = brdf_cos(s, l) * emission / max(d2, d_min2);
+            let transfer = receiver_brdf_cos(s, l, traced) * emission / max(d2, d_min2);
             let l_o = transfer * v.power.rgb;
             let vis = ism_visibility(i, v, p, s.normal, receiver_real);
             let route = vpl_routing(v.info.x, r_p, vis);
@@ -151,7 +165,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         }
     }
     let scale = f32(step);
-    let near = near_field(pixel, s, r_p, params.values.x, params.info.z, frame_index);
+    let near = near_field(pixel, s, traced, r_p, params.values.x, params.info.z, frame_index);
     textureStore(out_rv, pixel, vec4f(l_rv * scale + near.rv, 1.0));
     textureStore(out_r, pixel, vec4f(l_r * scale + near.r, 1.0));
     textureStore(out_env_rv, pixel, vec4f(env_rv, 1.0));

@@ -8,6 +8,7 @@
 // this also carries further near-field bounces). Both buffers from the same samples:
 // L_rv from every neighbour, L_r from real neighbours onto real receivers only (Eq. 5.7's
 // path rule; the real surface a virtual neighbour hides is unknown and adds nothing).
+// Neighbours the specular stage traces (mirror-like, transmissive) send nothing here.
 // Expects the indirect module's bindings (frame, G-buffer, previous_l_rv/_r).
 
 struct NearField {
@@ -26,7 +27,7 @@ fn pixels_per_metre(p: vec3f, pixel: vec2f) -> f32 {
     return length(moved - pixel) / 0.01 * distance(p, frame.camera_position.xyz);
 }
 
-fn near_field(pixel: vec2i, s: Surface, r_p: f32, d_min: f32, samples: u32, frame_index: u32) -> NearField {
+fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, samples: u32, frame_index: u32) -> NearField {
     var out: NearField;
     if (samples == 0u || d_min <= 0.0) { return out; }
     let centre = vec2f(pixel) + 0.5;
@@ -45,6 +46,11 @@ fn near_field(pixel: vec2i, s: Surface, r_p: f32, d_min: f32, samples: u32, fram
         if (any(q < vec2i(0)) || any(q >= size) || all(q == pixel)) { continue; }
         let flags = textureLoad(gbuffer_flags, q, 0).r;
         if (!is_covered(flags)) { continue; }
+        // A mirror's or a glass's radiance toward the camera is the scene it reflects or lets
+        // through, nothing like what it sends to p: such a neighbour glowed like a lamp onto
+        // the desk a glass object stands on. Its light reaches p as a caustic, or through the
+        // transmittance of its shadow (caster_transmittance), not here.
+        if (is_traced(materials[material_of(flags)])) { continue; }
         let x_q = world_from_pixel(frame, vec2f(q) + 0.5, textureLoad(gbuffer_depth_motion, q, 0).x);
         let to = x_q - s.position;
         let d2 = dot(to, to);
@@ -59,7 +65,7 @@ fn near_field(pixel: vec2i, s: Surface, r_p: f32, d_min: f32, samples: u32, fram
         let pixel_area = (t_q / scale) * (t_q / scale) / view_cos;
         // 1/d² of a disc of the pixel's area (bounded), minus what the clamped VPLs gave.
         let kernel = max(1.0 / (d2 + pixel_area / PI) - inv_d_min2, 0.0);
-        let transfer = brdf_cos(s, l) * cos_q * pixel_area * pixels_per_sample * kernel;
+        let transfer = receiver_brdf_cos(s, l, traced) * cos_q * pixel_area * pixels_per_sample * kernel;
         out.rv += transfer * textureLoad(previous_l_rv, q, 0).rgb;
         if (is_real(flags)) {
             out.r += transfer * textureLoad(previous_l_r, q, 0).rgb * r_p;

@@ -24,14 +24,14 @@ struct RasterParams {
 
 const SMALL: u32 = 256u;
 
-fn write_texel(vpl: u32, x: u32, y: u32, a: vec3f, b: vec3f, c: vec3f, inv_area: f32) {
+fn write_texel(vpl: u32, x: u32, y: u32, a: vec3f, b: vec3f, c: vec3f, inv_area: f32, material: u32) {
     let w = texel_weights(x, y, a, b, c, inv_area);
     if (!covers(w)) { return; }
     let depth = max(w.x * a.z + w.y * b.z + w.z * c.z, 0.0);
     let res = ism.tile.x;
     let tile = vec2u(vpl % ism.tile.y, vpl / ism.tile.y);
     let i = (tile.y * res + y) * (ism.tile.y * res) + tile.x * res + x;
-    atomicMax(&atlas[i], ism_encode(depth));
+    atomicMax(&atlas[i], ism_encode_caster(depth, material));
 }
 
 @compute @workgroup_size(64)
@@ -59,7 +59,7 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u) {
     if (u32(bb.z - bb.x + 1) * u32(bb.w - bb.y + 1) > SMALL) {
         let slot = atomicAdd(&big_args[0], 1u);
         if (slot < params.info.z) {
-            big[slot] = BigTriangle(vec4f(s[0], 0.0), vec4f(s[1], 0.0), vec4f(s[2], 0.0), vec4u(bb), vec4u(vpl, 0u, 0u, 0u));
+            big[slot] = BigTriangle(vec4f(s[0], 0.0), vec4f(s[1], 0.0), vec4f(s[2], 0.0), vec4u(bb), vec4u(vpl, inst.info.x, 0u, 0u));
             return;
         }
         atomicSub(&big_args[0], 1u);
@@ -67,7 +67,7 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u) {
     let inv_area = 1.0 / area;
     for (var y = bb.y; y <= bb.w; y++) {
         for (var x = bb.x; x <= bb.z; x++) {
-            write_texel(vpl, u32(x), u32(y), s[0], s[1], s[2], inv_area);
+            write_texel(vpl, u32(x), u32(y), s[0], s[1], s[2], inv_area, inst.info.x);
         }
     }
 }
@@ -81,7 +81,7 @@ fn cs_big(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: v
     for (var tile = wg.y; tile < tiles.x * tiles.y; tile += params.info.w) {
         let p = big_texel(bb, tiles, tile, lid.xy);
         if (p.x <= bb.z && p.y <= bb.w) {
-            write_texel(t.payload.x, u32(p.x), u32(p.y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area);
+            write_texel(t.payload.x, u32(p.x), u32(p.y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area, t.payload.y);
         }
     }
 }

@@ -71,7 +71,7 @@ fn cs_main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) g
             if (hit.y == 0.0 && !own) { continue; }
             let depth = select(centre.depth, hit.x, hit.x > 0.0);
             let i = (tile.y * ism.tile.x + u32(y)) * atlas_width + tile.x * ism.tile.x + u32(x);
-            atomicMax(&atlas[i], ism_encode(depth));
+            atomicMax(&atlas[i], ism_encode_caster(depth, p.material));
         }
     }
 }

@@ -108,10 +108,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         power = incident.radiance * d2 * solid_angle;
     }
     let metallic = clamp(m.params.x * mr.b, 0.0, 1.0);
-    let reflectance = base.rgb * (1.0 - metallic) + mix(m.dielectric.rgb, base.rgb, metallic);
+    let albedo = vpl_base_color(m, base.rgb, metallic);
+    let reflectance = albedo * (1.0 - metallic) + mix(m.dielectric.rgb, albedo, metallic);
     out.position = vec4f(h.position, 1.0);
     out.normal = vec4f(n, clamp(m.params.y * mr.g, 0.0, 1.0));
-    out.albedo = vec4f(base.rgb, metallic);
+    out.albedo = vec4f(albedo, metallic);
     out.power = vec4f(power, luminance(power * reflectance));
     out.material = vec4f((m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0, m.dielectric.a, select(0.0, 1.0, (inst.info.y & SURFACE_REAL) != 0u), length(cross(hx.position - h.position, hy.position - h.position)));
     rsm[index] = out;

@@ -221,7 +221,7 @@ fn cs_finalize(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_in
         power /= max(b.carry.w, 1e-8);
     }
     v.power = vec4f(power, m.params.x);
-    v.albedo = vec4f(m.base_color.rgb, m.dielectric.a);
+    v.albedo = vec4f(vpl_base_color(m, m.base_color.rgb, m.params.x), m.dielectric.a);
     v.incoming = vec4f(incoming, (m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0);
     // x̄ = x̄_source · r(p); ir is inherited (Eq. 5.9–5.10).
     var flags = b.info.x & VPL_IR;
@@ -342,7 +342,7 @@ fn environment_bounce(slot: u32, b: BounceSlot, lane: u32) -> Vpl {
     v.position = vec4f(p.position, carry.x);
     v.normal = vec4f(n, m.params.y);
     v.power = vec4f(e.rv * carry, m.params.x);
-    v.albedo = vec4f(m.base_color.rgb, m.dielectric.a);
+    v.albedo = vec4f(vpl_base_color(m, m.base_color.rgb, m.params.x), m.dielectric.a);
     v.incoming = vec4f(n, (m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0);
     var flags = 0u;
     if (p.real) {

@@ -1,0 +1,133 @@
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: SpecularParams;
+@group(0) @binding(2) var<uniform> caustics: CausticParams;
+@group(0) @binding(3) var<uniform> shadow_params: ShadowParams;
+
+@group(1) @binding(0) var<storage, read> instances: array<Instance>;
+@group(1) @binding(1) var<storage, read> vertices: array<f32>;
+@group(1) @binding(2) var<storage, read> indices: array<u32>;
+@group(1) @binding(3) var<storage, read> triangles: array<vec4u>;
+@group(1) @binding(4) var<storage, read> materials: array<Material>;
+@group(1) @binding(5) var<storage, read> impostors: array<Impostor>;
+@group(1) @binding(6) var<storage, read> owners: array<Owner>;
+@group(1) @binding(7) var<storage, read> impostor_texels: array<vec2u>;
+@group(1) @binding(8) var<storage, read> lights: array<Light>;
+@group(1) @binding(9) var<storage, read> shadow_clip_from_world: array<mat4x4f>;
+@group(1) @binding(10) var<storage, read> shadow_texels: array<vec2u>;
+@group(1) @binding(11) var<storage, read> interiors: array<Interior>;
+@group(1) @binding(12) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(1) @binding(13) var<storage, read> bvh_triangles: array<u32>;
+@group(1) @binding(14) var<storage, read> bvh_corners: array<vec4f>;
+
+@group(2) @binding(0) var<storage, read_write> photons: array<Photon>;
+
+// A photon as it leaves the light: its ray and the solid angle (perspective maps) or area
+// (orthographic) its texel stands for.
+struct Emitted {
+    origin: vec3f,
+    dir: vec3f,
+    measure: f32,
+}
+
+fn emit(light: Light, texel: vec2u) -> Emitted {
+    var out: Emitted;
+    let res = f32(caustics.info.x);
+    let uv = (vec2f(texel) + 0.5) / res * 2.0 - 1.0;
+    let centre = caustics.casters.xyz;
+    let radius = caustics.casters.w;
+    if (light.info.x == LIGHT_DIRECTIONAL) {
+        let axis = light.direction_real.xyz;
+        let tb = tangent_frame(axis);
+        out.origin = centre - axis * (2.0 * radius) + (tb[0] * uv.x + tb[1] * uv.y) * radius;
+        out.dir = axis;
+        out.measure = (2.0 * radius / res) * (2.0 * radius / res);
+        return out;
+    }
+    let to = centre - light.position.xyz;
+    let d = length(to);
+    let axis = to / max(d, 1e-12);
+    // Half-angle of the map: the sphere's silhouette (a wide 84° when the light is inside it).
+    let s = min(radius / max(d, 1e-12), 0.995);
+    let t = s / sqrt(1.0 - s * s);
+    let tb = tangent_frame(axis);
+    let ray = axis + (tb[0] * uv.x + tb[1] * uv.y) * t;
+    out.origin = light.position.xyz;
+    out.dir = normalize(ray);
+    // Solid angle of a texel of side e on the plane at unit distance: e² cos³θ.
+    let e = 2.0 * t / res;
+    let c = dot(out.dir, axis);
+    out.measure = e * e * c * c * c;
+    return out;
+}
+
+// The first traced object on the ray: (triangle + 1, t), or triangle 0.
+fn first_caster(origin: vec3f, dir: vec3f) -> vec2f {
+    var best = vec2f(0.0, 3.0e38);
+    for (var k = 0u; k < arrayLength(&interiors); k++) {
+        let hit = trace_interior(k, origin, dir, 0.0);
+        if (hit.x > 0.0 && hit.y < best.y) { best = hit; }
+    }
+    return best;
+}
+
+// Where a photon leaving `origin` along `dir` from `owner` lands, in the whole world or the
+// real-only one, with `power` times the path's Fresnel and transmittance.
+fn land(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self: bool, power: vec3f) -> Photon {
+    var out: Photon;
+    if (all(power <= vec3f(0.0))) { return out; }
+    let end = trace_ray(origin, dir, owner, real_only, first_sees_self);
+    if (end.triangle == 0u) { return out; }
+    let h = intersect(end.triangle - 1u, end.position - end.dir, end.dir);
+    // A specular surface at the last bounce receives no caustic: it has no diffuse part.
+    if (is_traced(materials[instances[h.instance].info.x])) { return out; }
+    out.position = vec4f(end.position, 1.0);
+    out.normal = vec4f(facing_normal(h, -end.dir), 0.0);
+    out.power = vec4f(power * end.weight, 0.0);
+    return out;
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    lane = local;
+    let res = caustics.info.x;
+    if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
+    let light = lights[id.z];
+    for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
+        photons[photon_index(id.z, kind, id.xy)] = Photon(vec4f(0.0), vec4f(0.0), vec4f(0.0));
+    }
+    let e = emit(light, id.xy);
+    let first = first_caster(e.origin, e.dir);
+    if (first.x == 0.0) { return; }
+    let h = intersect(u32(first.x) - 1u, e.origin, e.dir);
+    let m = materials[instances[h.instance].info.x];
+    let n = facing_normal(h, -e.dir);
+    let incident = light_incident(light, h.position);
+    // Power through the texel: intensity × solid angle (light_incident divides by d²), or
+    // irradiance × area.
+    var power = incident.radiance * e.measure;
+    if (light.info.x != LIGHT_DIRECTIONAL) { power *= incident.distance * incident.distance; }
+    let v_r = shadow_visibility(light, light.info.y, h.position, n);
+    let v_v = shadow_visibility(light, light.info.w, h.position, n);
+    let all_real = light.direction_real.w > 0.5 && instance_is_real(h.instance);
+
+    let cos_i = max(dot(n, -e.dir), 0.0);
+    let metallic = m.params.x;
+    let f0 = mix(m.dielectric.rgb, m.base_color.rgb, metallic);
+    let reflectance = schlick(f0, mix(m.dielectric.a, 1.0, metallic), cos_i);
+    let reflected = reflect(e.dir, n);
+    let concave = interiors[h.instance].info.y == 1u;
+    let rv = min(v_r, v_v);
+    photons[photon_index(id.z, 0u, id.xy)] = land(h.position, reflected, h.instance, false, concave, power * reflectance * rv);
+    if (all_real) {
+        photons[photon_index(id.z, 2u, id.xy)] = land(h.position, reflected, h.instance, true, concave, power * reflectance * v_r);
+    }
+    let transmission = m.transmission.x * (1.0 - metallic);
+    if (transmission <= 0.0) { return; }
+    let ior = max(m.transmission.y, 1.0);
+    let exit = traced_exit(h.instance, h.position, e.dir, n, ior);
+    let through = power * transmission * (1.0 - fresnel_ior(ior, cos_i)) * exit_transmittance(m, m.base_color.rgb, exit, ior);
+    photons[photon_index(id.z, 1u, id.xy)] = land(exit.position, exit.dir, h.instance, false, true, through * rv);
+    if (all_real) {
+        photons[photon_index(id.z, 3u, id.xy)] = land(exit.position, exit.dir, h.instance, true, true, through * v_r);
+    }
+}

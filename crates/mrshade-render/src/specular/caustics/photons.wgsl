@@ -1,0 +1,41 @@
+// Photon G-buffers (reflections spec §2.17.1, Table T6.3) for every punctual light type (the
+// documents had spots only). Each light shoots one photon per texel of a square map aimed at
+// the bounding sphere of the traced objects: perspective for point and spot lights,
+// orthographic for directional ones. Where a photon meets a traced object's surface, lit past
+// the shadow maps, it splits into a reflected and a refracted photon (Schlick Fresnel from
+// the IOR; the refracted one followed through the object's inside with total internal
+// reflection and Beer–Lambert, as the camera's rays are), and both fly on through the
+// impostors, across further specular surfaces up to `max_bounces`, to the diffuse surface
+// they land on.
+//
+// Routing (§2.17.5, Eq. P12–P14): the L_rv photons fly through the whole world, their power
+// shadowed by every caster; L_r photons exist only for a real light on a real object, fly
+// through the real-only world and are shadowed by real casters only. A real caustic that a
+// virtual object blocks (in either segment) stays in L_r and leaves L_rv, so that the
+// difference takes it off the photo: the paper's Fig. 7a fails this (spec §5.1, L6).
+
+struct CausticParams {
+    // photon resolution, light count, concentration (0 energy, 1 thesis), k_c n_max
+    info: vec4u,
+    // bounding sphere of the traced instances: centre, radius
+    casters: vec4f,
+    // splat half-size min, max (metres), depth epsilon, k_c base
+    splat: vec4f,
+}
+
+struct Photon {
+    // where it landed; w: 1 if it did
+    position: vec4f,
+    // the receiver's normal (facing the photon)
+    normal: vec4f,
+    // power, W (rgb)
+    power: vec4f,
+}
+
+// Per light and texel: the reflected and the refracted photon of L_rv, then those of L_r.
+const PHOTON_KINDS: u32 = 4u;
+
+fn photon_index(light: u32, kind: u32, texel: vec2u) -> u32 {
+    let res = caustics.info.x;
+    return ((light * PHOTON_KINDS + kind) * res + texel.y) * res + texel.x;
+}
