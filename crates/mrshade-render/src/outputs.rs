@@ -155,9 +155,11 @@ impl Renderer {
 }
 
 impl Renderer {
-    /// The specular stage's AOVs (none without the stage): its light in camera values, and
-    /// its reflection and refraction G-buffers: hit positions (directions where the ray left
-    /// the scene) and path weights (Fresnel · transmittance).
+    /// The specular stage's AOVs (none without the stage): its light in camera values, its
+    /// reflection and refraction G-buffers: hit positions (directions where the ray left the
+    /// scene) and path weights (Fresnel · transmittance), and the caustic buffer: irradiance
+    /// of the `L_rv` and the `L_r` photons (W/m², at 1/`caustics.buffer_divisor` size; alpha
+    /// dropped: the photon count).
     fn read_specular_aovs(&self, ctx: &GpuContext) -> Result<Vec<Aov>> {
         let Some(stage) = &self.specular else { return Ok(Vec::new()) };
         let g = &stage.gbuffers;
@@ -173,6 +175,8 @@ impl Renderer {
             linear("refraction_hit", rgb32(&g.refraction_hit)?),
             linear("reflection_weight", read_rgba16f(ctx, &g.reflection_weight)?),
             linear("refraction_weight", read_rgba16f(ctx, &g.refraction_weight)?),
+            linear("caustics_rv", read_rgba16f(ctx, &stage.caustic_buffer.rv)?),
+            linear("caustics_r", read_rgba16f(ctx, &stage.caustic_buffer.r)?),
         ])
     }
 }

@@ -23,13 +23,14 @@ pub enum Concentration {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct CausticsSettings {
-    /// Trace photons from every punctual light through the traced objects. Default off for
-    /// now: splatting a focused caustic costs fill rate (1080p on the H200 with a glass and a
-    /// mirror under a spot: 0.85 ms of photons and 9 ms of splatting at 512², 3 ms at 256²),
-    /// which a real-time frame of 3 ms cannot pay yet.
+    /// Trace photons from every punctual light (and the probe) through the traced objects.
+    /// Default on. They cost (1080p, NVIDIA H200, glass + mirror + spot, `dir`): 0.8 ms of
+    /// photon tracing and 1.5 ms of splatting at the defaults, over a 3.0 ms frame without.
     pub enabled: bool,
     /// Side of each light's photon map (one photon per texel and branch, aimed at the
-    /// bounding sphere of the traced objects). Default 512 [T §7].
+    /// bounding sphere of the traced objects). The thesis used 512 and 256 [T §7]; default
+    /// 128: splatting a focused caustic is bound by blending many photons into the same
+    /// pixels (1080p, H200, one spot: 0.4 ms at 128², 1.3 ms at 256², 4.9 ms at 512²).
     pub photon_resolution: u32,
     /// Smallest half-size of a photon's quad, metres (spec §2.17.2: "a user-defined minimum
     /// and maximum", 0.005 and 0.007 in the thesis's scene). Default 0.002.
@@ -42,6 +43,22 @@ pub struct CausticsSettings {
     /// A photon lights a pixel when its quad lies within this fraction of the camera distance
     /// of the pixel's surface (spec §2.17.4: "a specified epsilon range"). Default 0.02.
     pub depth_epsilon: f32,
+    /// Directions of the probe's upper hemisphere that shoot photons each frame (a spherical
+    /// Fibonacci set, rotated every frame): the light a mirror or a glass redirects from the
+    /// sky onto the desk, which the documents do not render (their caustics are of spot
+    /// lights only). Each direction stands for 2π/n sr of the probe, looked up prefiltered
+    /// over about that much. Only with a method that shadows the probe (`dir`), whose
+    /// directional VPLs then treat transmissive casters as opaque: the photons carry the
+    /// light that passes. 0: off. Default 64 (desk-glass region FLIP 0.170 without, 0.146
+    /// with 16, 0.143 with 64 and 128; their splat at 1080p on the H200: 0.3 ms for 16,
+    /// 1.15 ms for 64).
+    pub environment_directions: u32,
+    /// Side of each probe direction's photon map (orthographic over the traced objects).
+    /// Default 32.
+    pub environment_resolution: u32,
+    /// The caustic buffer has 1/divisor of the frame's pixels along each axis: the splat's
+    /// fill rate falls with its square, the resolve reads it bilinearly. Default 2.
+    pub buffer_divisor: u32,
     /// Irradiance from the photons. Default `energy`.
     pub concentration: Concentration,
     /// `n_max` of k_c (thesis mode): photons for full intensity. Default 32 [T §7].
@@ -53,11 +70,14 @@ pub struct CausticsSettings {
 impl Default for CausticsSettings {
     fn default() -> Self {
         Self {
-            enabled: false,
-            photon_resolution: 512,
+            enabled: true,
+            photon_resolution: 128,
             splat_min: 0.002,
             splat_max: 0.02,
             depth_epsilon: 0.02,
+            environment_directions: 64,
+            environment_resolution: 32,
+            buffer_divisor: 2,
             concentration: Concentration::Energy,
             thesis_photons: 32,
             thesis_base: 1.3,
@@ -87,6 +107,21 @@ impl CausticsSettings {
             self.depth_epsilon.is_finite() && self.depth_epsilon > 0.0 && self.depth_epsilon < 1.0,
             "caustics.depth_epsilon",
             format!("must be a number in (0, 1), got {}", self.depth_epsilon),
+        )?;
+        check(
+            self.environment_directions <= 1024,
+            "caustics.environment_directions",
+            format!("must be at most 1024, got {}", self.environment_directions),
+        )?;
+        check(
+            (4..=512).contains(&self.environment_resolution),
+            "caustics.environment_resolution",
+            format!("must be between 4 and 512 texels, got {}", self.environment_resolution),
+        )?;
+        check(
+            (1..=8).contains(&self.buffer_divisor),
+            "caustics.buffer_divisor",
+            format!("must be between 1 and 8, got {}", self.buffer_divisor),
         )?;
         check(
             (1..=256).contains(&self.thesis_photons),
@@ -131,8 +166,21 @@ mod tests {
             CausticsSettings { depth_epsilon: f32::NAN, ..Default::default() },
             CausticsSettings { thesis_photons: 0, ..Default::default() },
             CausticsSettings { thesis_base: 1.0, ..Default::default() },
+            CausticsSettings { environment_directions: 5000, ..Default::default() },
+            CausticsSettings { environment_resolution: 2, ..Default::default() },
+            CausticsSettings { buffer_divisor: 0, ..Default::default() },
         ];
-        let fields = ["photon_resolution", "splat_min", "splat_max", "depth_epsilon", "thesis_photons", "thesis_base"];
+        let fields = [
+            "photon_resolution",
+            "splat_min",
+            "splat_max",
+            "depth_epsilon",
+            "thesis_photons",
+            "thesis_base",
+            "environment_directions",
+            "environment_resolution",
+            "buffer_divisor",
+        ];
         for (s, field) in bad.iter().zip(fields) {
             assert!(s.validate().unwrap_err().contains(&format!("caustics.{field}")), "{field}");
         }

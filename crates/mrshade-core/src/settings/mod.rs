@@ -49,6 +49,15 @@ impl Method {
         }
     }
 
+    /// Whether virtual objects shadow the probe's light (`dir`, through its directional
+    /// VPLs); `direct` lights with the probe unshadowed.
+    pub fn shadows_probe(self) -> bool {
+        match self {
+            Method::Direct => false,
+            Method::Dir => true,
+        }
+    }
+
     /// Frames a still image takes by default: one for `direct`; 256 for `dir`, whose multiple
     /// bounces build up over the first frames and whose still-scene smoothing then averages
     /// the VPLs of about 250 frames (`dir.temporal.static_confidence`), the last 128 frames'
@@ -91,6 +100,16 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// Whether the probe's light reaches the scene's diffuse surfaces through its mirrors and
+    /// glass as photons (`caustics.environment_directions`): only with a method that shadows
+    /// the probe (its shadows of transmissive casters are then opaque).
+    pub fn probe_caustics(&self) -> bool {
+        self.specular.enabled
+            && self.caustics.enabled
+            && self.caustics.environment_directions > 0
+            && self.method.shadows_probe()
+    }
+
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
         self.composite.validate()?;

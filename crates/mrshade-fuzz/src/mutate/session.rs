@@ -11,6 +11,8 @@ enum Kind {
     Number,
     Path,
     Choice(&'static [&'static str]),
+    /// true or false.
+    Bool,
 }
 
 /// Settings a session may hold.
@@ -42,6 +44,24 @@ const KEYS: &[(&str, Kind)] = &[
     ("dir.clamp_distance", Kind::Number),
     ("dir.distribution", Kind::Choice(&["equal", "weighted", "flux"])),
     ("dir.temporal.base_confidence", Kind::Number),
+    ("specular.enabled", Kind::Bool),
+    ("specular.impostor_resolution", Kind::Number),
+    ("specular.linear_steps", Kind::Number),
+    ("specular.binary_steps", Kind::Number),
+    ("specular.max_bounces", Kind::Number),
+    ("specular.max_roughness", Kind::Number),
+    ("specular.backprojection_epsilon", Kind::Number),
+    ("specular.refraction", Kind::Choice(&["traced", "two-interfaces", "wyman"])),
+    ("specular.refraction_policy", Kind::Choice(&["keep-refraction", "rendered"])),
+    ("caustics.enabled", Kind::Bool),
+    ("caustics.photon_resolution", Kind::Number),
+    ("caustics.environment_directions", Kind::Number),
+    ("caustics.environment_resolution", Kind::Number),
+    ("caustics.buffer_divisor", Kind::Number),
+    ("caustics.splat_min", Kind::Number),
+    ("caustics.splat_max", Kind::Number),
+    ("caustics.depth_epsilon", Kind::Number),
+    ("caustics.concentration", Kind::Choice(&["energy", "thesis"])),
     ("reference.spp", Kind::Number),
     ("reference.max_bounces", Kind::Number),
     // Lowering a budget is fair; raising one is the user's informed choice, not an attack.
@@ -88,6 +108,7 @@ pub fn mutate(files: &mut BTreeMap<String, Vec<u8>>, u: &mut Unstructured) -> St
                 }
             }
             Kind::Path => toml::Value::String(values::string(u).into()),
+            Kind::Bool => toml::Value::Boolean(u.ratio(1, 2).unwrap_or(false)),
             Kind::Choice(options) => toml::Value::String(options[u.choose_index(options.len()).unwrap_or(0)].into()),
         };
         let value = if key == "limits.allow_read" { toml::Value::Array(vec![value]) } else { value };

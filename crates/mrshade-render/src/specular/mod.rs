@@ -242,7 +242,7 @@ impl SpecularStage {
                 (settings.refraction_policy == RefractionPolicy::Rendered) as u32,
                 (inputs.settings.caustics.concentration == Concentration::Thesis) as u32,
                 inputs.settings.caustics.thesis_photons,
-                0,
+                inputs.settings.caustics.buffer_divisor,
             ),
             tolerances: Vec4::new(settings.backprojection_epsilon, inputs.settings.caustics.thesis_base, 0.0, 0.0),
         };
@@ -251,12 +251,13 @@ impl SpecularStage {
         let shadow_params =
             storage("specular/shadow_params", bytemuck::bytes_of(&shadow_params), wgpu::BufferUsages::UNIFORM);
         let gbuffers = SpecularGBuffers::new(device, size);
-        let caustic_buffer = caustics::caustic_buffer(device, size);
+        let caustic_buffer = caustics::caustic_buffer(device, size, inputs.settings.caustics.buffer_divisor);
         // Photons start on the rigid traced instances, whose BVHs they are traced into.
         let casters: Vec<usize> = traced_instances.iter().copied().filter(|&i| interiors.has(i)).collect();
         let caustics = caustics::Caustics::new(
             ctx,
             inputs.settings.caustics,
+            inputs.settings.probe_caustics(),
             inputs.frame,
             inputs.gpu_scene,
             casters,

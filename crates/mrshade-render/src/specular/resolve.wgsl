@@ -210,6 +210,20 @@ fn caustic_irradiance(c: vec4f) -> vec3f {
     return c.rgb / c.a * k_c;
 }
 
+// The caustic buffer `t` (1/divisor of the frame along each axis) at full-size `pixel`,
+// bilinearly.
+fn caustic_texel(t: texture_2d<f32>, pixel: vec2i) -> vec4f {
+    let st = (vec2f(pixel) + 0.5) / f32(params.info.w) - 0.5;
+    let base = vec2i(floor(st));
+    let f = fract(st);
+    let last = vec2i(textureDimensions(t)) - 1;
+    let a = textureLoad(t, clamp(base, vec2i(0), last), 0);
+    let b = textureLoad(t, clamp(base + vec2i(1, 0), vec2i(0), last), 0);
+    let c = textureLoad(t, clamp(base + vec2i(0, 1), vec2i(0), last), 0);
+    let d = textureLoad(t, clamp(base + vec2i(1, 1), vec2i(0), last), 0);
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
 // The caustics on the diffuse surface at `pixel`, in camera values (spec §2.17.4–§2.17.5,
 // Eq. T5.4–T5.6): the caustic buffer's irradiance through the surface's diffuse BRDF, all
 // of the L_rv photons' on a virtual pixel, on a real one their difference from the L_r
@@ -219,8 +233,8 @@ fn caustic_light(pixel: vec2i, flags: u32) -> vec3f {
     let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
     let m = materials[material_of(flags)];
     let diffuse = am.rgb * (1.0 - am.a) * (1.0 - m.transmission.x) / PI;
-    var e = caustic_irradiance(textureLoad(caustics_rv, pixel, 0));
-    if (is_real(flags)) { e -= caustic_irradiance(textureLoad(caustics_r, pixel, 0)); }
+    var e = caustic_irradiance(caustic_texel(caustics_rv, pixel));
+    if (is_real(flags)) { e -= caustic_irradiance(caustic_texel(caustics_r, pixel)); }
     return frame.exposure_env.x * diffuse * e;
 }
 

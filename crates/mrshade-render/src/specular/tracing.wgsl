@@ -12,9 +12,10 @@
 struct SpecularParams {
     // impostor resolution, linear steps, binary steps, max bounces
     steps: vec4u,
-    // refraction policy (0 keep refraction, 1 rendered), unused…
+    // refraction policy (0 keep refraction, 1 rendered), caustic concentration (0 energy,
+    // 1 thesis), k_c n_max, caustic buffer divisor
     info: vec4u,
-    // back-projection epsilon (fraction of the camera distance), unused…
+    // back-projection epsilon (fraction of the camera distance), k_c base, unused…
     tolerances: vec4f,
 }
 

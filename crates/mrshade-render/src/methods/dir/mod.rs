@@ -94,6 +94,7 @@ impl DirMethod {
             &vpl.vpls,
             &ism_resources,
             settings,
+            session.settings.probe_caustics(),
             radius,
             radiance,
             &interleaved,

@@ -21,6 +21,33 @@
 
 @group(2) @binding(0) var<storage, read_write> photons: array<Photon>;
 
+@group(3) @binding(0) var env_radiance: texture_2d<f32>;
+@group(3) @binding(1) var env_irradiance: texture_2d<f32>;
+@group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
+@group(3) @binding(3) var env_sampler: sampler;
+
+// Probe direction `k` of this frame's `count` as a directional light (beyond the documents,
+// whose caustics are of spot lights): a spherical Fibonacci set over the upper hemisphere
+// (light from below comes through the floor), rotated and shifted every frame so that stills
+// and the temporal smoothing see the whole sky; each direction carries the probe's radiance
+// prefiltered over about the 2π/count sr it stands for, times that solid angle.
+fn probe_light(k: u32, count: u32) -> Light {
+    let frame_index = u32(frame.exposure_env.w);
+    let jitter = vec2f(f32(hash_u32(frame_index * 2u + 1u)), f32(hash_u32(frame_index * 2u + 2u))) * 2.3283064365386963e-10;
+    let y = 1.0 - (f32(k) + jitter.x) / f32(count);
+    let phi = 2.0 * PI * fract(f32(k) * 0.6180339887 + jitter.y);
+    let r = sqrt(max(1.0 - y * y, 0.0));
+    let toward = vec3f(r * cos(phi), y, r * sin(phi));
+    let solid_angle = 2.0 * PI / f32(count);
+    // GGX roughness whose lobe spans about that solid angle (α² ≈ Ω / π, clamped).
+    let roughness = clamp(sqrt(sqrt(solid_angle / PI)), 0.05, 1.0);
+    var l: Light;
+    l.direction_real = vec4f(-toward, 1.0);
+    l.intensity = vec4f(env_radiance_at(frame, toward, roughness) * solid_angle, 0.0);
+    l.info = vec4u(LIGHT_DIRECTIONAL, 0u, 1u, 0u);
+    return l;
+}
+
 // A photon as it leaves the light: its ray and the solid angle (perspective maps) or area
 // (orthographic) its texel stands for.
 struct Emitted {
@@ -91,7 +118,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     lane = local;
     let res = caustics.info.x;
     if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
-    let light = lights[id.z];
+    let from_probe = caustics.info.z == 1u;
+    var light: Light;
+    if (from_probe) { light = probe_light(id.z, caustics.info.y); } else { light = lights[id.z]; }
     for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
         photons[photon_index(id.z, kind, id.xy)] = Photon(vec4f(0.0), vec4f(0.0), vec4f(0.0));
     }
@@ -106,8 +135,13 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     // irradiance × area.
     var power = incident.radiance * e.measure;
     if (light.info.x != LIGHT_DIRECTIONAL) { power *= incident.distance * incident.distance; }
-    let v_r = shadow_visibility(light, light.info.y, h.position, n);
-    let v_v = shadow_visibility(light, light.info.w, h.position, n);
+    // The punctual lights' shadow maps; the probe's light reaches its casters unoccluded.
+    var v_r = 1.0;
+    var v_v = 1.0;
+    if (!from_probe) {
+        v_r = shadow_visibility(light, light.info.y, h.position, n);
+        v_v = shadow_visibility(light, light.info.w, h.position, n);
+    }
     let all_real = light.direction_real.w > 0.5 && instance_is_real(h.instance);
 
     let cos_i = max(dot(n, -e.dir), 0.0);
@@ -129,5 +163,45 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     photons[photon_index(id.z, 1u, id.xy)] = land(exit.position, exit.dir, h.instance, false, true, through * rv);
     if (all_real) {
         photons[photon_index(id.z, 3u, id.xy)] = land(exit.position, exit.dir, h.instance, true, true, through * v_r);
+    }
+}
+
+// World distance to the photon's landed neighbour `dx`, `dy` texels away (0 if none).
+fn neighbour_distance(index: u32, texel: vec2u, p: vec3f, dx: i32, dy: i32) -> f32 {
+    let res = i32(caustics.info.x);
+    let q = vec2i(texel) + vec2i(dx, dy);
+    if (any(q < vec2i(0)) || any(q >= vec2i(res))) { return 0.0; }
+    let other = photons[u32(i32(index) + dy * res + dx)];
+    if (other.position.w == 0.0) { return 0.0; }
+    return distance(other.position.xyz, p);
+}
+
+// The smaller of two neighbour distances that exist (0: none).
+fn nearer(a: f32, b: f32) -> f32 {
+    if (a == 0.0) { return b; }
+    if (b == 0.0) { return a; }
+    return min(a, b);
+}
+
+// Each landed photon's quad half-size (spec §2.17.2, "computed from the world-position of the
+// adjacent photons, similar as in the work of Wyman"), into normal.w, clamped to [splat_min,
+// splat_max]: the photon spacing along each axis of the map is the nearer neighbour's
+// distance, so that one neighbour across a discontinuity (another surface, the caster's
+// silhouette) does not blow the quad up; the wider axis sizes the quad. Once per photon
+// here, not per vertex of its quad.
+@compute @workgroup_size(8, 8)
+fn cs_size(@builtin(global_invocation_id) id: vec3u) {
+    let res = caustics.info.x;
+    if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
+    for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
+        let index = photon_index(id.z, kind, id.xy);
+        let photon = photons[index];
+        if (photon.position.w == 0.0) { continue; }
+        let p = photon.position.xyz;
+        let spacing = max(
+            nearer(neighbour_distance(index, id.xy, p, -1, 0), neighbour_distance(index, id.xy, p, 1, 0)),
+            nearer(neighbour_distance(index, id.xy, p, 0, -1), neighbour_distance(index, id.xy, p, 0, 1)),
+        );
+        photons[index].normal.w = clamp(spacing, caustics.splat.x, caustics.splat.y);
     }
 }

@@ -7,7 +7,7 @@ use crate::scene_gpu::{Geometry, GpuScene};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::Differential;
-use mrshade_core::settings::{CausticsSettings, Concentration};
+use mrshade_core::settings::CausticsSettings;
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
@@ -47,19 +47,32 @@ pub struct CausticInputs<'a> {
     pub normal_roughness: &'a Target,
 }
 
-/// The caustic buffer and what fills it.
+/// One set of photon sources: the punctual lights, or this frame's probe directions.
+struct PhotonGroup {
+    /// Sources (lights or directions) and the side of each one's photon map.
+    sources: u32,
+    resolution: u32,
+    /// 1 for probe directions.
+    from_probe: u32,
+    params: wgpu::Buffer,
+    photons: wgpu::Buffer,
+    emit_groups: [wgpu::BindGroup; 2],
+    splat_group: wgpu::BindGroup,
+}
+
+/// The photon tracing and splatting that fill the caustic buffer.
 pub struct Caustics {
     settings: CausticsSettings,
     /// The instances whose world boxes bound the photon maps.
     casters: Vec<usize>,
-    lights: u32,
-    params: wgpu::Buffer,
-    /// The photon G-buffers of every light (AOV `photons`).
-    pub photons: wgpu::Buffer,
+    groups: Vec<PhotonGroup>,
+    /// Bind groups every group's photon tracing shares: the scene, the probe.
+    scene_group: wgpu::BindGroup,
+    probe_group: wgpu::BindGroup,
     emit: wgpu::ComputePipeline,
-    emit_groups: [wgpu::BindGroup; 3],
+    /// Each photon's quad size, from its neighbours (after all have landed).
+    size: wgpu::ComputePipeline,
     splat: wgpu::RenderPipeline,
-    splat_group: wgpu::BindGroup,
 }
 
 impl Caustics {
@@ -68,34 +81,24 @@ impl Caustics {
     /// GPU timing label of the splatting.
     pub const SPLAT_LABEL: &'static str = "specular/caustic_splat";
 
-    /// The caustics of `gpu_scene`'s punctual lights through the traced instances `casters`,
-    /// or `None` when they are off or there is no punctual light.
+    /// The caustics of `gpu_scene`'s punctual lights (and of the probe, with
+    /// `probe_caustics`) through the traced instances `casters`, or `None` when they are off
+    /// or nothing shoots photons.
     pub fn new(
         ctx: &GpuContext,
         settings: CausticsSettings,
+        probe_caustics: bool,
         frame: &wgpu::Buffer,
         gpu_scene: &GpuScene,
         casters: Vec<usize>,
         inputs: &CausticInputs,
     ) -> Option<Self> {
         let lights = gpu_scene.light_count;
-        if !settings.enabled || lights == 0 || casters.is_empty() {
+        let directions = if probe_caustics { settings.environment_directions } else { 0 };
+        if !settings.enabled || (lights == 0 && directions == 0) || casters.is_empty() {
             return None;
         }
         let device = &ctx.device;
-        let res = settings.photon_resolution;
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("specular/caustic_params"),
-            contents: bytemuck::bytes_of(&Self::params_of(&settings, lights, Vec4::ZERO)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
-        let photons = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("specular/photons"),
-            size: lights as u64 * PHOTON_KINDS * res as u64 * res as u64 * PHOTON_BYTES,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let half = wgpu::TextureFormat::Rgba16Float;
         let cs = wgpu::ShaderStages::COMPUTE;
         let s = gpu_scene;
         let g = &s.geometry;
@@ -107,6 +110,16 @@ impl Caustics {
         let emit_scene =
             bind::layout(device, "specular/photons_scene", &(0..15).map(|i| bind::storage(i, cs)).collect::<Vec<_>>());
         let emit_output = bind::layout(device, "specular/photons_output", &[bind::storage_rw(0, cs)]);
+        let emit_probe = bind::layout(
+            device,
+            "specular/photons_probe",
+            &[
+                bind::texture_float(0, cs),
+                bind::texture_float(1, cs),
+                bind::texture_float(2, cs),
+                bind::sampler(3, cs, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
         let [impostors, owners, impostor_texels] = inputs.impostors;
         let scene_buffers: [&wgpu::Buffer; 15] = [
             &g.instances,
@@ -125,24 +138,31 @@ impl Caustics {
             inputs.interiors[2],
             inputs.interiors[3],
         ];
-        let emit_groups = [
-            bind::group(
-                device,
-                "specular/photons_uniforms",
-                &emit_uniforms,
-                &[frame, inputs.specular_params, &params, inputs.shadow_params].map(|b| b.as_entire_binding()),
-            ),
-            bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding())),
-            bind::group(device, "specular/photons_output", &emit_output, &[photons.as_entire_binding()]),
-        ];
-        let emit = mrshade_gpu::shader::compute_pipeline(
+        use wgpu::BindingResource::{Sampler, TextureView};
+        let probe = &s.probe;
+        let probe_group = bind::group(
             device,
-            Self::PHOTONS_LABEL,
+            "specular/photons_probe",
+            &emit_probe,
+            &[
+                TextureView(&probe.radiance.view),
+                TextureView(&probe.irradiance.view),
+                TextureView(&probe.dfg.view),
+                Sampler(&probe.sampler),
+            ],
+        );
+        let emit_layouts = [&emit_uniforms, &emit_scene, &emit_output, &emit_probe];
+        let emit = mrshade_gpu::shader::compute_pipeline(device, Self::PHOTONS_LABEL, PHOTONS_SHADER, &emit_layouts);
+        let size = mrshade_gpu::shader::compute_pipeline_entry(
+            device,
+            "specular/photon_size",
             PHOTONS_SHADER,
-            &[&emit_uniforms, &emit_scene, &emit_output],
+            "cs_size",
+            &emit_layouts,
         );
 
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
         let splat_layout = bind::layout(
@@ -152,23 +172,11 @@ impl Caustics {
                 bind::uniform(0, vf),
                 bind::uniform(1, vf),
                 bind::storage(2, vf),
-                bind::texture(3, wgpu::ShaderStages::FRAGMENT, unfilterable, d2),
-                bind::texture(4, wgpu::ShaderStages::FRAGMENT, unfilterable, d2),
+                bind::texture(3, fragment, unfilterable, d2),
+                bind::texture(4, fragment, unfilterable, d2),
             ],
         );
-        use wgpu::BindingResource::TextureView;
-        let splat_group = bind::group(
-            device,
-            "specular/caustic_splat",
-            &splat_layout,
-            &[
-                frame.as_entire_binding(),
-                params.as_entire_binding(),
-                photons.as_entire_binding(),
-                TextureView(&inputs.depth_motion.view),
-                TextureView(&inputs.normal_roughness.view),
-            ],
-        );
+        let half = wgpu::TextureFormat::Rgba16Float;
         let splat = mrshade_gpu::shader::additive_render_pipeline(
             device,
             Self::SPLAT_LABEL,
@@ -176,20 +184,57 @@ impl Caustics {
             &[&splat_layout],
             &[half, half],
         );
-        Some(Self { settings, casters, lights, params, photons, emit, emit_groups, splat, splat_group })
+
+        let mut groups = Vec::new();
+        for (label, sources, resolution, from_probe) in [
+            ("specular/photons_lights", lights, settings.photon_resolution, 0),
+            ("specular/photons_probe", directions, settings.environment_resolution, 1),
+        ] {
+            if sources == 0 {
+                continue;
+            }
+            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label}/params")),
+                contents: bytemuck::bytes_of(&CausticParams::zeroed()),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+            let photons = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: sources as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64 * PHOTON_BYTES,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let emit_groups = [
+                bind::group(
+                    device,
+                    &format!("{label}/uniforms"),
+                    &emit_uniforms,
+                    &[frame, inputs.specular_params, &params, inputs.shadow_params].map(|b| b.as_entire_binding()),
+                ),
+                bind::group(device, &format!("{label}/output"), &emit_output, &[photons.as_entire_binding()]),
+            ];
+            let splat_group = bind::group(
+                device,
+                &format!("{label}/splat"),
+                &splat_layout,
+                &[
+                    frame.as_entire_binding(),
+                    params.as_entire_binding(),
+                    photons.as_entire_binding(),
+                    TextureView(&inputs.depth_motion.view),
+                    TextureView(&inputs.normal_roughness.view),
+                ],
+            );
+            groups.push(PhotonGroup { sources, resolution, from_probe, params, photons, emit_groups, splat_group });
+        }
+        let scene_group =
+            bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
+        Some(Self { settings, casters, groups, scene_group, probe_group, emit, size, splat })
     }
 
-    fn params_of(settings: &CausticsSettings, lights: u32, casters: Vec4) -> CausticParams {
-        CausticParams {
-            info: UVec4::new(
-                settings.photon_resolution,
-                lights,
-                (settings.concentration == Concentration::Thesis) as u32,
-                settings.thesis_photons,
-            ),
-            casters,
-            splat: Vec4::new(settings.splat_min, settings.splat_max, settings.depth_epsilon, settings.thesis_base),
-        }
+    /// The photon G-buffers of the punctual lights (AOV), if any.
+    pub fn light_photons(&self) -> Option<&wgpu::Buffer> {
+        self.groups.iter().find(|g| g.from_probe == 0).map(|g| &g.photons)
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their
@@ -202,18 +247,29 @@ impl Caustics {
             hi = hi.max(b);
         }
         let sphere = ((lo + hi) * 0.5).extend(((hi - lo) * 0.5).length().max(1e-6));
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&Self::params_of(&self.settings, self.lights, sphere)));
+        for g in &self.groups {
+            let params = CausticParams {
+                info: UVec4::new(g.resolution, g.sources, g.from_probe, self.settings.buffer_divisor),
+                casters: sphere,
+                splat: Vec4::new(self.settings.splat_min, self.settings.splat_max, self.settings.depth_epsilon, 0.0),
+            };
+            queue.write_buffer(&g.params, 0, bytemuck::bytes_of(&params));
+        }
     }
 
     /// Photon tracing, then splatting into `buffer` (see [`caustic_buffer`]).
     pub fn record(&self, rec: &mut Recorder, buffer: &Differential<Target>) {
-        let res = self.settings.photon_resolution;
         rec.compute(Self::PHOTONS_LABEL, |pass| {
-            pass.set_pipeline(&self.emit);
-            for (i, g) in self.emit_groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
+            for pipeline in [&self.emit, &self.size] {
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(1, &self.scene_group, &[]);
+                pass.set_bind_group(3, &self.probe_group, &[]);
+                for g in &self.groups {
+                    pass.set_bind_group(0, &g.emit_groups[0], &[]);
+                    pass.set_bind_group(2, &g.emit_groups[1], &[]);
+                    pass.dispatch_workgroups(g.resolution.div_ceil(8), g.resolution.div_ceil(8), g.sources);
+                }
             }
-            pass.dispatch_workgroups(res.div_ceil(8), res.div_ceil(8), self.lights);
         });
         fn clear(t: &Target) -> Option<wgpu::RenderPassColorAttachment<'_>> {
             Some(wgpu::RenderPassColorAttachment {
@@ -226,18 +282,21 @@ impl Caustics {
                 },
             })
         }
-        let photons = self.lights * PHOTON_KINDS as u32 * res * res;
         rec.render(Self::SPLAT_LABEL, &[clear(&buffer.rv), clear(&buffer.r)], None, |pass| {
             pass.set_pipeline(&self.splat);
-            pass.set_bind_group(0, &self.splat_group, &[]);
-            pass.draw(0..6, 0..photons);
+            for g in &self.groups {
+                pass.set_bind_group(0, &g.splat_group, &[]);
+                pass.draw(0..6 * g.sources * PHOTON_KINDS as u32 * g.resolution * g.resolution, 0..1);
+            }
         });
     }
 }
 
-/// The caustic buffer of a frame of `size`: per differential half, the irradiance of the
-/// photons (rgb, W/m²) and their count (a). Zero where no caustic is traced.
-pub fn caustic_buffer(device: &wgpu::Device, size: (u32, u32)) -> Differential<Target> {
+/// The caustic buffer of a frame of `size` (1/`divisor` of it along each axis): per
+/// differential half, the irradiance of the photons (rgb, W/m²) and their count (a). Zero
+/// where no caustic is traced.
+pub fn caustic_buffer(device: &wgpu::Device, size: (u32, u32), divisor: u32) -> Differential<Target> {
+    let size = (size.0.div_ceil(divisor), size.1.div_ceil(divisor));
     let usage =
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
     let half = wgpu::TextureFormat::Rgba16Float;
@@ -257,6 +316,8 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "../../../shaders/lib/sampling.wgsl",
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/shadow.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
+    "../../../shaders/lib/env.wgsl",
     "../tracing.wgsl",
     "photons.wgsl",
     "emit.wgsl",

@@ -15,7 +15,8 @@
 // difference takes it off the photo: the paper's Fig. 7a fails this (spec §5.1, L6).
 
 struct CausticParams {
-    // photon resolution, light count, concentration (0 energy, 1 thesis), k_c n_max
+    // photon resolution, source count, sources (0 the punctual lights, 1 probe directions),
+    // caustic buffer divisor
     info: vec4u,
     // bounding sphere of the traced instances: centre, radius
     casters: vec4f,

@@ -16,7 +16,7 @@
 // sun 4 % too much red and 3 % too little blue (desk-bunny region FLIP 0.069 → 0.046).
 
 struct IndirectParams {
-    // interleave I, VPL count, near-field samples, unused
+    // interleave I, VPL count, near-field samples, 1 if the probe's caustics are photons
     info: vec4u,
     // clamp distance d_min (m), unused…
     values: vec4f,
@@ -81,7 +81,10 @@ fn ism_visible(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_
     let i = ism_texel_index(index, c.uv, ism);
     let stored = select(ism_real[i], ism_virtual[i], virtual_atlas);
     if (ism_decode(stored) >= c.depth - limit_bias) { return 1.0; }
-    if (!ism_caster_known(stored)) { return 0.0; }
+    // The probe's light through a transmissive caster: its photons carry it when they fly
+    // (RenderSettings::probe_caustics), else the shadow lets it through.
+    let photons = vpl_kind(v) == VPL_DIRECTIONAL && params.info.w == 1u;
+    if (!ism_caster_known(stored) || photons) { return 0.0; }
     return caster_transmittance(materials[ism_caster_material(stored)]);
 }
 

@@ -33,7 +33,8 @@ impl IndirectPass {
     /// GPU timing label.
     pub const LABEL: &'static str = "indirect";
 
-    /// Binds the G-buffer, VPLs and ISMs; writes `out`.
+    /// Binds the G-buffer, VPLs and ISMs; writes `out`. With `probe_caustics` the probe's
+    /// light through transmissive casters is the specular stage's (photons), not the shadow's.
     #[allow(clippy::too_many_arguments, reason = "shading reads all of these")]
     pub fn new(
         ctx: &GpuContext,
@@ -43,6 +44,7 @@ impl IndirectPass {
         vpls: &[wgpu::Buffer; 2],
         ism: &IsmResources,
         settings: &DirSettings,
+        probe_caustics: bool,
         scene_radius: f32,
         previous_radiance: &Differential<Target>,
         out: &IndirectLight,
@@ -50,7 +52,12 @@ impl IndirectPass {
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
         let params = IndirectParams {
-            info: UVec4::new(settings.interleave, ism.params.tile.z, settings.near_field_samples, 0),
+            info: UVec4::new(
+                settings.interleave,
+                ism.params.tile.z,
+                settings.near_field_samples,
+                probe_caustics as u32,
+            ),
             values: Vec4::new(settings.clamp_distance * scene_radius, 0.0, 0.0, 0.0),
         };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
