@@ -184,57 +184,98 @@ fn slab_shift(refraction: &str) {
     assert!(shifted >= 3, "the shift is large enough to tell apart at {shifted} of the pixels");
 }
 
-#[test]
-fn a_virtual_glass_ball_focuses_a_real_lamp_onto_the_floor_behind_it() {
-    const SIZE: u32 = 48;
-    // A 10 cm glass ball 25 cm above a real floor, a real point light up and to the side: the
-    // ray through the ball's centre is not bent, so the caustic is centred near where that
-    // ray meets the floor (a ball of n = 1.5 focuses 15 cm behind its centre; the floor, 34 cm
-    // behind it, sees the light spread around that point, out of the ball's own view shadow).
+const BALL: u32 = 48;
+const BALL_LIGHT: Vec3 = Vec3::new(0.4, 0.7, 0.0);
+const BALL_CENTRE: Vec3 = Vec3::new(0.0, 0.25, 0.0);
+
+/// The glass-ball caustic scene: a 10 cm glass ball 25 cm above a real floor (albedo 0.5), a
+/// point light up and to the side, seen from straight above; `blocker` adds a virtual opaque
+/// cube in the refracted light's way. Returns the render and what caustics add to the
+/// composite's green channel per pixel (on minus off).
+fn ball_caustic(light_real: bool, ball_real: bool, blocker: bool) -> (common::Rendered, Vec<f32>) {
     let render = |caustics: bool| {
-        let mut s = Setup::top_down(SIZE);
+        let mut s = Setup::top_down(BALL);
         s.extra_toml += &format!("[caustics]\nenabled = {caustics}\nphoton_resolution = 64\n");
-        s.plane(2.0, 0.0, 0.5, true).light(json!({"type": "point", "intensity": 2.0}), [0.4, 0.7, 0.0], true);
+        s.plane(2.0, 0.0, 0.5, true).light(
+            json!({"type": "point", "intensity": 2.0}),
+            BALL_LIGHT.to_array(),
+            light_real,
+        );
+        if blocker {
+            s.cube([-0.13, 0.1, 0.0], 0.03, false);
+        }
         let g = s.gltf.material(glass());
         let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.1, 24), Some(g), true);
-        s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": [0.0, 0.25, 0.0], "extras": {"real": false}}));
+        s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": BALL_CENTRE.to_array(),
+            "extras": {"real": ball_real}}));
         let r = s.render();
         let image = r.renderer.read_composite(&r.ctx).unwrap().image;
         (r, image)
     };
     let (r, with) = render(true);
     let (_, without) = render(false);
-    let light = Vec3::new(0.4, 0.7, 0.0);
-    let centre = Vec3::new(0.0, 0.25, 0.0);
-    let d = centre - light;
-    let chief = light + d * (-light.y / d.y);
+    let added =
+        (0..BALL * BALL).map(|i| with.get(i % BALL, i / BALL)[1] - without.get(i % BALL, i / BALL)[1]).collect();
+    (r, added)
+}
+
+/// Where the ray from the light through the ball's centre (not bent) meets the floor.
+fn ball_chief_point() -> Vec3 {
+    let d = BALL_CENTRE - BALL_LIGHT;
+    BALL_LIGHT + d * (-BALL_LIGHT.y / d.y)
+}
+
+#[test]
+fn a_virtual_glass_ball_focuses_a_real_lamp_onto_the_floor_behind_it() {
+    // A ball of n = 1.5 focuses 15 cm behind its centre; the floor, 34 cm behind it, sees the
+    // light spread around the chief ray's floor point, out of the ball's own view shadow.
+    let (r, added) = ball_caustic(true, false, false);
     let (mut best, mut best_at, mut total, mut power) = (0.0f32, Vec3::ZERO, 0.0f32, 0.0f32);
-    for y in 0..SIZE {
-        for x in 0..SIZE {
-            let added = with.get(x, y)[1] - without.get(x, y)[1];
-            assert!(added > -1e-3, "pixel ({x}, {y}): the caustic takes light away ({added})");
-            total += added.max(0.0);
-            // Irradiance (exposure 1, albedo 0.5: E = added · π / 0.5) times the pixel's floor area.
-            let area = (r.world_on_plane(x + 1, y, 0.0) - r.world_on_plane(x, y, 0.0)).length().powi(2);
-            power += added.max(0.0) * std::f32::consts::PI / 0.5 * area;
-            if added > best {
-                best = added;
-                best_at = r.world_on_plane(x, y, 0.0);
-            }
+    for (i, &a) in added.iter().enumerate() {
+        let (x, y) = (i as u32 % BALL, i as u32 / BALL);
+        assert!(a > -1e-3, "pixel ({x}, {y}): the caustic takes light away ({a})");
+        total += a.max(0.0);
+        // Irradiance (exposure 1, albedo 0.5: E = added · π / 0.5) times the pixel's floor area.
+        let area = (r.world_on_plane(x + 1, y, 0.0) - r.world_on_plane(x, y, 0.0)).length().powi(2);
+        power += a.max(0.0) * std::f32::consts::PI / 0.5 * area;
+        if a > best {
+            best = a;
+            best_at = r.world_on_plane(x, y, 0.0);
         }
     }
     assert!(best > 0.05, "a caustic is visible (brightest addition {best})");
     // Energy (green): the power the ball intercepts, I·πr²/d², through two interfaces (about
     // 0.85 of it) and 15 cm of the glass's green attenuation (0.9 per 20 cm): about 0.13 W,
     // less what lands under the ball, which the camera above cannot see.
-    let intercepted = 2.0 * std::f32::consts::PI * 0.1 * 0.1 / (light - centre).length_squared();
+    let intercepted = 2.0 * std::f32::consts::PI * 0.1 * 0.1 / (BALL_LIGHT - BALL_CENTRE).length_squared();
     assert!(
         (0.45 * intercepted..0.85 * intercepted).contains(&power),
         "the caustic carries {power} W of the {intercepted} W the ball intercepts"
     );
     assert!(total > 5.0 * best, "the caustic covers more than a pixel ({total} vs peak {best})");
-    assert!(
-        (best_at - chief).length() < 0.1,
-        "the caustic's brightest point {best_at} is near the undeviated ray's floor point {chief}"
-    );
+    let chief = ball_chief_point();
+    assert!((best_at - chief).length() < 0.1, "the caustic's brightest point {best_at} is near {chief}");
+}
+
+#[test]
+fn a_virtual_lamp_shows_its_caustic_through_real_glass() {
+    // Spec §2.17.5 (Eq. T5.6): a path with a virtual light goes to L_rv only, so the whole
+    // caustic of a virtual lamp through a real ball is added to the photo.
+    let (r, added) = ball_caustic(false, true, false);
+    let (i, best) = added.iter().enumerate().fold((0, 0.0f32), |b, (i, &a)| if a > b.1 { (i, a) } else { b });
+    assert!(best > 0.05, "the virtual lamp's caustic is added (brightest {best})");
+    let at = r.world_on_plane(i as u32 % BALL, i as u32 / BALL, 0.0);
+    assert!((at - ball_chief_point()).length() < 0.1, "where the chief ray lands, not at {at}");
+}
+
+#[test]
+fn a_real_caustic_that_a_virtual_object_blocks_leaves_the_image() {
+    // Beyond the paper (its Fig. 7a fails this, spec §5.1 L6): the real lamp's caustic through
+    // the real ball is in the photo; a virtual cube in its way keeps the L_rv photons from the
+    // floor but not the L_r ones (real-only world), so the difference takes it off the floor.
+    let (r, added) = ball_caustic(true, true, true);
+    let (i, least) = added.iter().enumerate().fold((0, 0.0f32), |b, (i, &a)| if a < b.1 { (i, a) } else { b });
+    assert!(least < -0.05, "the blocked real caustic is removed (darkest change {least})");
+    let at = r.world_on_plane(i as u32 % BALL, i as u32 / BALL, 0.0);
+    assert!((at - ball_chief_point()).length() < 0.12, "where the chief ray lands, not at {at}");
 }
