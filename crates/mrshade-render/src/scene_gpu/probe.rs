@@ -53,6 +53,29 @@ impl GpuProbe {
         debug_assert!(environment.is_none() || radiance_mips == RADIANCE_LEVELS);
         Self { radiance, irradiance, dfg, sampler, radiance_mips }
     }
+
+    /// Layout entries of the probe's lighting at bindings 0–3 of a group, as shaders/lib/env.wgsl
+    /// names them: env_radiance, env_irradiance, env_dfg_table, env_sampler.
+    pub fn layout_entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 4] {
+        use mrshade_gpu::bind;
+        [
+            bind::texture_float(0, visibility),
+            bind::texture_float(1, visibility),
+            bind::texture_float(2, visibility),
+            bind::sampler(3, visibility, wgpu::SamplerBindingType::Filtering),
+        ]
+    }
+
+    /// The resources of [`GpuProbe::layout_entries`], in binding order.
+    pub fn resources(&self) -> [wgpu::BindingResource<'_>; 4] {
+        use wgpu::BindingResource::{Sampler, TextureView};
+        [
+            TextureView(&self.radiance.view),
+            TextureView(&self.irradiance.view),
+            TextureView(&self.dfg.view),
+            Sampler(&self.sampler),
+        ]
+    }
 }
 
 /// Uploads `levels` as the mip chain of one RGBA16F texture.

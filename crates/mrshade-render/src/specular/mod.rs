@@ -20,7 +20,7 @@ pub mod interior;
 use crate::passes::direct::ShadowParams;
 use crate::passes::gbuffer::GBuffer;
 use crate::raster::{Casters, RasterView, Rasterizer};
-use crate::scene_gpu::GpuScene;
+use crate::scene_gpu::{GpuProbe, GpuScene};
 use crate::uniforms::FrameUniforms;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec4};
@@ -365,19 +365,14 @@ impl SpecularStage {
         resolve_entries.extend((5..=18).map(|b| bind::texture(b, cs, unfilterable, d2)));
         let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
         let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(17));
-        let resolve_probe = bind::layout(
-            device,
-            "specular/resolve_probe",
-            &[
-                bind::texture_float(0, cs),
-                bind::texture_float(1, cs),
-                bind::texture_float(2, cs),
-                bind::sampler(3, cs, wgpu::SamplerBindingType::Filtering),
-                bind::texture(4, cs, filterable, array),
-                bind::texture(5, cs, filterable, array),
-                bind::sampler(6, cs, wgpu::SamplerBindingType::Filtering),
-            ],
-        );
+        // The probe (bindings 0–3) and the material textures hit surfaces are shaded with.
+        let mut probe_entries = GpuProbe::layout_entries(cs).to_vec();
+        probe_entries.extend([
+            bind::texture(4, cs, filterable, array),
+            bind::texture(5, cs, filterable, array),
+            bind::sampler(6, cs, wgpu::SamplerBindingType::Filtering),
+        ]);
+        let resolve_probe = bind::layout(device, "specular/resolve_probe", &probe_entries);
         let resolve_output = bind::layout(
             device,
             "specular/resolve_output",
@@ -416,14 +411,14 @@ impl SpecularStage {
                 "specular/resolve_probe",
                 &resolve_probe,
                 &[
-                    TextureView(&probe.radiance.view),
-                    TextureView(&probe.irradiance.view),
-                    TextureView(&probe.dfg.view),
-                    Sampler(&probe.sampler),
-                    TextureView(&s.materials.srgb.view),
-                    TextureView(&s.materials.linear.view),
-                    Sampler(&s.materials.sampler),
-                ],
+                    probe.resources().as_slice(),
+                    &[
+                        TextureView(&s.materials.srgb.view),
+                        TextureView(&s.materials.linear.view),
+                        Sampler(&s.materials.sampler),
+                    ],
+                ]
+                .concat(),
             ),
             bind::group(device, "specular/resolve_output", &resolve_output, &[TextureView(&inputs.output.view)]),
         ];

@@ -6,7 +6,7 @@
 use crate::methods::IndirectLight;
 use crate::passes::gbuffer::GBuffer;
 use crate::passes::shadow::ShadowPass;
-use crate::scene_gpu::GpuScene;
+use crate::scene_gpu::{GpuProbe, GpuScene};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
 use mrshade_core::Differential;
@@ -115,22 +115,13 @@ impl DirectPass {
             "direct/lights_layout",
             &[bind::storage(0, cs), bind::storage(1, cs), bind::storage(2, cs), bind::storage(3, cs)],
         );
-        let probe_layout = bind::layout(
-            device,
-            "direct/probe_layout",
-            &[
-                bind::texture_float(0, cs),
-                bind::texture_float(1, cs),
-                bind::texture_float(2, cs),
-                bind::sampler(3, cs, wgpu::SamplerBindingType::Filtering),
-            ],
-        );
+        let probe_layout = bind::layout(device, "direct/probe_layout", &GpuProbe::layout_entries(cs));
         let output_layout = bind::layout(
             device,
             "direct/output_layout",
             &[bind::storage_texture(0, RADIANCE_FORMAT), bind::storage_texture(1, RADIANCE_FORMAT)],
         );
-        use wgpu::BindingResource::{Sampler, TextureView};
+        use wgpu::BindingResource::TextureView;
         let probe = &scene.probe;
         let groups = [
             bind::group(
@@ -164,17 +155,7 @@ impl DirectPass {
                     shadows.maps.as_entire_binding(),
                 ],
             ),
-            bind::group(
-                device,
-                "direct/probe_group",
-                &probe_layout,
-                &[
-                    TextureView(&probe.radiance.view),
-                    TextureView(&probe.irradiance.view),
-                    TextureView(&probe.dfg.view),
-                    Sampler(&probe.sampler),
-                ],
-            ),
+            bind::group(device, "direct/probe_group", &probe_layout, &probe.resources()),
             bind::group(
                 device,
                 "direct/output_group",

@@ -3,7 +3,7 @@
 //! caustic buffer of irradiance per differential half (`splat.wgsl`), applied to the diffuse
 //! surfaces the camera sees by the specular stage's resolve.
 
-use crate::scene_gpu::{Geometry, GpuScene};
+use crate::scene_gpu::{Geometry, GpuProbe, GpuScene};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::Differential;
@@ -110,16 +110,7 @@ impl Caustics {
         let emit_scene =
             bind::layout(device, "specular/photons_scene", &(0..15).map(|i| bind::storage(i, cs)).collect::<Vec<_>>());
         let emit_output = bind::layout(device, "specular/photons_output", &[bind::storage_rw(0, cs)]);
-        let emit_probe = bind::layout(
-            device,
-            "specular/photons_probe",
-            &[
-                bind::texture_float(0, cs),
-                bind::texture_float(1, cs),
-                bind::texture_float(2, cs),
-                bind::sampler(3, cs, wgpu::SamplerBindingType::Filtering),
-            ],
-        );
+        let emit_probe = bind::layout(device, "specular/photons_probe", &GpuProbe::layout_entries(cs));
         let [impostors, owners, impostor_texels] = inputs.impostors;
         let scene_buffers: [&wgpu::Buffer; 15] = [
             &g.instances,
@@ -138,19 +129,8 @@ impl Caustics {
             inputs.interiors[2],
             inputs.interiors[3],
         ];
-        use wgpu::BindingResource::{Sampler, TextureView};
-        let probe = &s.probe;
-        let probe_group = bind::group(
-            device,
-            "specular/photons_probe",
-            &emit_probe,
-            &[
-                TextureView(&probe.radiance.view),
-                TextureView(&probe.irradiance.view),
-                TextureView(&probe.dfg.view),
-                Sampler(&probe.sampler),
-            ],
-        );
+        use wgpu::BindingResource::TextureView;
+        let probe_group = bind::group(device, "specular/photons_probe", &emit_probe, &s.probe.resources());
         let emit_layouts = [&emit_uniforms, &emit_scene, &emit_output, &emit_probe];
         let emit = mrshade_gpu::shader::compute_pipeline(device, Self::PHOTONS_LABEL, PHOTONS_SHADER, &emit_layouts);
         let size = mrshade_gpu::shader::compute_pipeline_entry(
