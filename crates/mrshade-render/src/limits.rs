@@ -140,6 +140,17 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
+    // The probe's directions, in a buffer of their own.
+    let directions = settings.caustics.environment_directions as u64;
+    let probe_photons_fit = |res: u64| directions * res * res * photon_bytes <= max_binding;
+    let resolution = &mut settings.caustics.environment_resolution;
+    if !fit.shrink("caustics.environment_resolution", resolution, &probe_photons_fit, 4) {
+        bail!(
+            "caustics.environment_directions = {directions} need more photon G-buffers than one GPU buffer of this \
+             device holds ({} MiB) even at 4×4 photons each; use fewer directions",
+            max_binding >> 20
+        );
+    }
     (crate::methods::entry(settings.method).fit)(&mut settings, &mut fit)?;
     check_scene_buffers(scene, device)?;
     let estimate = estimate(scene, &settings, &output);
@@ -230,6 +241,19 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
         ),
         ("textures", texture_bytes),
     ];
+    // The caustics' photon G-buffers, where the specular stage runs.
+    let traced = scene.materials.iter().any(|m| settings.specular.traces(m.metallic, m.roughness, m.transmission));
+    if traced && settings.caustics.enabled {
+        let c = &settings.caustics;
+        let texels = |sources: u64, res: u32| sources * res as u64 * res as u64;
+        let photon_bytes = crate::specular::caustics::PHOTON_BYTES * crate::specular::caustics::PHOTON_KINDS;
+        let lights = texels(scene.lights.len() as u64, c.photon_resolution);
+        let directions = texels(c.environment_directions as u64, c.environment_resolution);
+        items.push((
+            "caustic photons (lights × photon_resolution² + environment_directions × environment_resolution²)",
+            (lights + directions) * photon_bytes,
+        ));
+    }
     items.extend((crate::methods::entry(settings.method).estimate)(settings, internal, layers));
     Estimate(items)
 }
@@ -296,6 +320,24 @@ mod tests {
         assert!(warnings.iter().any(|w| w.contains("output.supersample = 4")), "{warnings:?}");
         let err = fit_to_device(&session(0, 16384), SMALL_DEVICE).unwrap_err().to_string();
         assert!(err.contains("16384×12288"), "{err}");
+    }
+
+    #[test]
+    fn oversized_photon_maps_are_halved_and_impossible_ones_refused() {
+        // 1024 probe directions × 512² photons × 4 kinds × 48 B = 48 GiB: 32² (192 MiB) does
+        // not fit 128 MiB either; 16² (48 MiB) does.
+        let mut s = session(1, 640);
+        s.settings.caustics.environment_directions = 1024;
+        s.settings.caustics.environment_resolution = 512;
+        let (fitted, _, warnings) = fit_to_device(&s, SMALL_DEVICE).unwrap();
+        assert_eq!(fitted.caustics.environment_resolution, 16);
+        assert!(warnings.iter().any(|w| w.contains("caustics.environment_resolution = 512")), "{warnings:?}");
+        // A 1 MiB device: a 64×48 frame and its shadow maps fit; 1024 × 4² photons (3 MiB) do not.
+        let mut small = session(1, 64);
+        small.settings.caustics = s.settings.caustics;
+        let tiny = DeviceLimits { max_binding: 1 << 20, ..SMALL_DEVICE };
+        let err = fit_to_device(&small, tiny).unwrap_err().to_string();
+        assert!(err.contains("caustics.environment_directions = 1024"), "{err}");
     }
 
     #[test]
