@@ -1,5 +1,5 @@
-//! Caustics of the punctual lights through the traced objects (reflections spec §2.17):
-//! photon G-buffers (`emit.wgsl`), splatted as surface-aligned quads into a screen-space
+//! Caustics of the punctual lights and of the probe's sky through the traced objects
+//! (reflections spec §2.17): photon G-buffers (`emit.wgsl`), splatted as surface-aligned quads into a screen-space
 //! caustic buffer of irradiance per differential half (`splat.wgsl`), applied to the diffuse
 //! surfaces the camera sees by the specular stage's resolve.
 
@@ -16,11 +16,12 @@ use wgpu::util::DeviceExt;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct CausticParams {
-    /// Photon resolution, light count, concentration (0 energy, 1 thesis), k_c n_max.
+    /// Photon resolution, source count, sources (0 the punctual lights, 1 probe directions),
+    /// caustic buffer divisor.
     pub info: UVec4,
     /// Bounding sphere of the casters: centre, radius.
     pub casters: Vec4,
-    /// Splat half-size min, max, depth epsilon, k_c base.
+    /// Splat half-size min, max (metres), depth epsilon, unused.
     pub splat: Vec4,
 }
 
@@ -55,7 +56,7 @@ struct PhotonGroup {
     /// 1 for probe directions.
     from_probe: u32,
     params: wgpu::Buffer,
-    photons: wgpu::Buffer,
+    /// The photon G-buffer lives in these (wgpu bind groups keep their buffers).
     emit_groups: [wgpu::BindGroup; 2],
     splat_group: wgpu::BindGroup,
 }
@@ -205,16 +206,11 @@ impl Caustics {
                     TextureView(&inputs.normal_roughness.view),
                 ],
             );
-            groups.push(PhotonGroup { sources, resolution, from_probe, params, photons, emit_groups, splat_group });
+            groups.push(PhotonGroup { sources, resolution, from_probe, params, emit_groups, splat_group });
         }
         let scene_group =
             bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
         Some(Self { settings, casters, groups, scene_group, probe_group, emit, size, splat })
-    }
-
-    /// The photon G-buffers of the punctual lights (AOV), if any.
-    pub fn light_photons(&self) -> Option<&wgpu::Buffer> {
-        self.groups.iter().find(|g| g.from_probe == 0).map(|g| &g.photons)
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their

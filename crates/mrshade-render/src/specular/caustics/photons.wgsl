@@ -20,7 +20,7 @@ struct CausticParams {
     info: vec4u,
     // bounding sphere of the traced instances: centre, radius
     casters: vec4f,
-    // splat half-size min, max (metres), depth epsilon, k_c base
+    // splat half-size min, max (metres), depth epsilon, unused
     splat: vec4f,
 }
 
