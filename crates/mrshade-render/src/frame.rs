@@ -61,8 +61,11 @@ impl Renderer {
         self.direct.record(rec);
         // 5. G-buffer, geometry, L_rv, L_r, photo ─▶ the light of reflections and refractions
         //    on traced pixels (impostors, reflection/refraction G-buffers, back-projection).
+        //    Hit surfaces off screen are shaded with the method's light at any point (its
+        //    VPLs of this frame).
         if let Some(specular) = &mut self.specular {
-            specular.record(rec, raster);
+            let vpl_parity = self.method.point_light().map_or(0, |p| p.parity);
+            specular.record(rec, raster, vpl_parity);
         }
         // 6. L_rv, L_r, specular light, flags, photo ─▶ the composite and α.
         self.composite.record(rec);

@@ -246,7 +246,8 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
     if traced && settings.caustics.enabled {
         let c = &settings.caustics;
         let texels = |sources: u64, res: u32| sources * res as u64 * res as u64;
-        let photon_bytes = crate::specular::caustics::PHOTON_BYTES * crate::specular::caustics::PHOTON_KINDS;
+        use crate::specular::caustics::{PHOTON_BYTES, PHOTON_KINDS, SPLAT_LIST_BYTES};
+        let photon_bytes = (PHOTON_BYTES + SPLAT_LIST_BYTES) * PHOTON_KINDS;
         let lights = texels(scene.lights.len() as u64, c.photon_resolution);
         let directions = texels(c.environment_directions as u64, c.environment_resolution);
         items.push((

@@ -2,6 +2,7 @@
 
 use crate::methods::AovView;
 use crate::renderer::Renderer;
+use crate::specular::caustics::LandedPhoton;
 use anyhow::{Context, Result};
 use half::f16;
 use mrshade_core::flags::{SURFACE_COVERED, SURFACE_REAL};
@@ -159,7 +160,9 @@ impl Renderer {
     /// reflection and refraction G-buffers: hit positions (directions where the ray left the
     /// scene) and path weights (Fresnel · transmittance), and the caustic buffer: irradiance
     /// of the `L_rv` and the `L_r` photons (W/m², at 1/`caustics.buffer_divisor` size; alpha
-    /// dropped: the photon count).
+    /// dropped: the photon count), and its coarse level (the photons farther apart than
+    /// `caustics.splat_max`, at 1/8 of that size); the photon hits: the power (W) of the
+    /// last frame's `L_rv` photons summed in the pixel each landed in.
     fn read_specular_aovs(&self, ctx: &GpuContext) -> Result<Vec<Aov>> {
         let Some(stage) = &self.specular else { return Ok(Vec::new()) };
         let g = &stage.gbuffers;
@@ -175,9 +178,38 @@ impl Renderer {
             linear("refraction_hit", rgb32(&g.refraction_hit)?),
             linear("reflection_weight", read_rgba16f(ctx, &g.reflection_weight)?),
             linear("refraction_weight", read_rgba16f(ctx, &g.refraction_weight)?),
-            linear("caustics_rv", read_rgba16f(ctx, &stage.caustic_buffer.rv)?),
-            linear("caustics_r", read_rgba16f(ctx, &stage.caustic_buffer.r)?),
+            linear("caustics_rv", read_rgba16f(ctx, &stage.caustic_buffer.levels[0].rv)?),
+            linear("caustics_r", read_rgba16f(ctx, &stage.caustic_buffer.levels[0].r)?),
+            linear("caustics_coarse_rv", read_rgba16f(ctx, &stage.caustic_buffer.levels[1].rv)?),
+            linear("caustics_coarse_r", read_rgba16f(ctx, &stage.caustic_buffer.levels[1].r)?),
+            linear("photon_hits", self.photon_hits(ctx)?),
         ])
+    }
+
+    /// The caustic photons of the last frame that landed (none without caustics).
+    pub fn read_photons(&self, ctx: &GpuContext) -> Result<Vec<LandedPhoton>> {
+        match self.specular.as_ref().and_then(|s| s.caustics.as_ref()) {
+            Some(caustics) => caustics.read_photons(ctx),
+            None => Ok(Vec::new()),
+        }
+    }
+
+    /// The `photon_hits` AOV at the internal size (black without photons).
+    fn photon_hits(&self, ctx: &GpuContext) -> Result<HdrImage> {
+        let (width, height) = self.internal_size();
+        let mut image = HdrImage { width, height, pixels: vec![[0.0; 3]; (width * height) as usize] };
+        for photon in self.read_photons(ctx)?.iter().filter(|p| p.kind < 2) {
+            let clip = self.uniforms.clip_from_world * photon.position.extend(1.0);
+            if clip.w <= 0.0 {
+                continue;
+            }
+            let (x, y) = ((clip.x / clip.w * 0.5 + 0.5) * width as f32, (0.5 - clip.y / clip.w * 0.5) * height as f32);
+            if (0.0..width as f32).contains(&x) && (0.0..height as f32).contains(&y) {
+                let pixel = &mut image.pixels[y as usize * width as usize + x as usize];
+                *pixel = (glam::Vec3::from(*pixel) + photon.power).to_array();
+            }
+        }
+        Ok(image)
     }
 }
 

@@ -157,6 +157,7 @@ impl Renderer {
             gbuffer: &gbuffer,
             camera_visibility: &gbuffer_pass.camera.target,
             radiance: &radiance,
+            point_light: method.point_light(),
             photo: &photo.photo,
             composite_params: &composite.params,
             output: &specular_light,

@@ -215,7 +215,9 @@ fn interiors_match() {
 
 #[test]
 fn caustic_structs_match() {
-    use mrshade_render::specular::caustics::{CausticParams, PHOTON_BYTES, PHOTONS_SHADER};
+    use mrshade_render::specular::caustics::{
+        COARSE_LEVEL_FACTOR, CausticParams, PHOTON_BYTES, PHOTONS_SHADER, SPLAT_SHADER,
+    };
     assert_layout(
         PHOTONS_SHADER,
         "CausticParams",
@@ -227,4 +229,5 @@ fn caustic_structs_match() {
         ],
     );
     assert_eq!(wgsl_layout(PHOTONS_SHADER, "Photon").0 as u64, PHOTON_BYTES);
+    assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
 }

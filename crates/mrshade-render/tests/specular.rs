@@ -145,7 +145,9 @@ fn slab_shift(refraction: &str) {
     let (ior, thickness, centre_y) = (1.5f32, 0.3f32, 0.2f32);
     let mut s = Setup::top_down(SIZE);
     s.photo = Box::new(textured);
-    s.extra_toml += &format!("[specular]\nrefraction = \"{refraction}\"\n");
+    // One frame (`direct`): internal reflections dropped, so that every ray leaves through the
+    // bottom face (sampled, a few would leave through the top in any one frame).
+    s.extra_toml += &format!("[specular]\nrefraction = \"{refraction}\"\ninternal_reflections = \"dropped\"\n");
     s.plane(2.0, 0.0, 0.5, true);
     let m = s
         .gltf
@@ -278,4 +280,148 @@ fn a_real_caustic_that_a_virtual_object_blocks_leaves_the_image() {
     assert!(least < -0.05, "the blocked real caustic is removed (darkest change {least})");
     let at = r.world_on_plane(i as u32 % BALL, i as u32 / BALL, 0.0);
     assert!((at - ball_chief_point()).length() < 0.12, "where the chief ray lands, not at {at}");
+}
+
+/// Where a vertical ray down at horizontal offset `r` from the axis of a glass sphere (radius
+/// `a`, centre height `h`, index `n`) meets the floor y = 0, by Snell's law at both
+/// interfaces (signed: negative past the axis), and the share of its power that both
+/// interfaces let through (Schlick, from the outside angle at each).
+fn sphere_landing(r: f32, a: f32, h: f32, n: f32) -> (f32, f32) {
+    let refract = |d: Vec3, normal: Vec3, eta: f32| {
+        let c = -normal.dot(d);
+        let k = 1.0 - eta * eta * (1.0 - c * c);
+        d * eta + normal * (eta * c - k.sqrt())
+    };
+    let f0 = ((n - 1.0) / (n + 1.0)).powi(2);
+    let schlick = |cos: f32| f0 + (1.0 - f0) * (1.0 - cos).powi(5);
+    let centre = Vec3::new(0.0, h, 0.0);
+    let p1 = centre + Vec3::new(r, (a * a - r * r).sqrt(), 0.0);
+    let n1 = (p1 - centre) / a;
+    let down = Vec3::NEG_Y;
+    let d1 = refract(down, n1, 1.0 / n).normalize();
+    let p2 = p1 + d1 * (-2.0 * (p1 - centre).dot(d1));
+    let n2 = (p2 - centre) / a;
+    let d2 = refract(d1, -n2, n).normalize();
+    let p3 = p2 + d2 * (-p2.y / d2.y);
+    let through = (1.0 - schlick(n1.y)) * (1.0 - schlick(d2.dot(n2)));
+    (p3.x, through)
+}
+
+#[test]
+fn photons_through_a_glass_sphere_land_where_cpu_ray_tracing_says() {
+    // A sun straight down on a clear glass sphere (r = 10 cm, centre 25 cm up, n = 1.5): each
+    // photon of the orthographic map over the sphere's bounding sphere (radius √3 · 10 cm:
+    // its box's half diagonal) enters at its texel's offset from the axis, and lands where
+    // two refractions send it, with the power both interfaces let through. Internal
+    // reflections are dropped so that every photon takes the one path.
+    const RES: u32 = 16;
+    let (a, h, n) = (0.1f32, 0.25f32, 1.5f32);
+    let mut s = Setup::top_down(32);
+    s.extra_toml += &format!("[caustics]\nphoton_resolution = {RES}\n[specular]\ninternal_reflections = \"dropped\"\n");
+    s.plane(2.0, 0.0, 0.5, true).light(json!({"type": "directional", "intensity": 3.0}), [0.0, 1.0, 0.0], true);
+    let clear = json!({"name": "clear", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.0,
+        "roughnessFactor": 0.0}, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_ior": {"ior": n}}});
+    let g = s.gltf.material(clear);
+    let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(a, 64), Some(g), true);
+    s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": [0.0, h, 0.0], "extras": {"real": false}}));
+    let r = s.render();
+    let photons = r.renderer.read_photons(&r.ctx).unwrap();
+    let bounding = a * 3f32.sqrt();
+    let texel_area = (2.0 * bounding / RES as f32).powi(2);
+    let mut checked = 0;
+    for p in photons.iter().filter(|p| p.kind == 1) {
+        let uv = glam::Vec2::new(p.texel.0 as f32 + 0.5, p.texel.1 as f32 + 0.5) / RES as f32 * 2.0 - 1.0;
+        let offset = uv.length() * bounding;
+        assert!(offset < a, "texel {:?} misses the sphere but refracted a photon", p.texel);
+        if offset > 0.8 * a {
+            continue; // grazing entries: the tessellation's normals decide
+        }
+        let (landing, through) = sphere_landing(offset, a, h, n);
+        let got = glam::Vec2::new(p.position.x, p.position.z).length();
+        assert!(p.position.y.abs() < 1e-3, "photon {:?} lands on the floor, not at {}", p.texel, p.position);
+        assert!(
+            (got - landing.abs()).abs() < 0.003 + 0.03 * landing.abs(),
+            "photon {:?} entering {offset:.4} m off the axis lands {got:.4} m from it, CPU ray tracing says {:.4}",
+            p.texel,
+            landing.abs()
+        );
+        let expected = 3.0 * texel_area * through;
+        assert!(
+            (p.power.y - expected).abs() < 0.03 * expected,
+            "photon {:?} carries {} W, CPU says {expected}",
+            p.texel,
+            p.power.y
+        );
+        checked += 1;
+    }
+    assert!(checked >= 20, "only {checked} refracted photons checked");
+}
+
+/// A right glass prism along z (`half` deep): its cross-section has the top face at height
+/// `top` from x = −w to w, a vertical face at x = w down to `top − 2w`, and the hypotenuse
+/// between them, at 45°. Flat-shaded, faces wound outward.
+fn prism(w: f32, top: f32, half: f32) -> mrshade_testkit::gltf::Shape {
+    let (a, b, c) = ([-w, top], [w, top], [w, top - 2.0 * w]);
+    let v = |p: [f32; 2], z: f32| Vec3::new(p[0], p[1], z);
+    let faces: [(Vec<Vec3>, Vec3); 5] = [
+        (vec![v(a, -half), v(b, -half), v(b, half), v(a, half)], Vec3::Y),
+        (vec![v(b, -half), v(c, -half), v(c, half), v(b, half)], Vec3::X),
+        (vec![v(a, -half), v(a, half), v(c, half), v(c, -half)], Vec3::new(-1.0, -1.0, 0.0).normalize()),
+        (vec![v(a, -half), v(b, -half), v(c, -half)], Vec3::NEG_Z),
+        (vec![v(a, half), v(b, half), v(c, half)], Vec3::Z),
+    ];
+    let mut s = mrshade_testkit::gltf::Shape::default();
+    for (corners, normal) in faces {
+        let first = s.positions.len() as u32;
+        for p in &corners {
+            s.positions.push(p.to_array());
+            s.normals.push(normal.to_array());
+            s.uvs.push([0.0, 0.0]);
+        }
+        for k in 1..corners.len() as u32 - 1 {
+            let (i, j) = (first + k, first + k + 1);
+            let outward =
+                (corners[k as usize] - corners[0]).cross(corners[k as usize + 1] - corners[0]).dot(normal) > 0.0;
+            s.indices.extend(if outward { [first, i, j] } else { [first, j, i] });
+        }
+    }
+    s
+}
+
+#[test]
+fn total_internal_reflection_is_followed_or_takes_the_fallback() {
+    // Seen from straight above, a view ray enters the prism's top face, meets the hypotenuse at
+    // 45° (beyond the critical angle of n = 1.5, 41.8°) and is totally reflected toward +x;
+    // traced, it leaves the vertical face along +x and the scene with it. Wyman's two
+    // interfaces neglect total internal reflection (spec §2.12, [T]): the fallback leaves
+    // along the hypotenuse, (1, −1, 0)/√2, and meets the floor at x = top − w.
+    const SIZE: u32 = 32;
+    let (w, top) = (0.1f32, 0.3f32);
+    for refraction in ["traced", "two-interfaces"] {
+        let mut s = Setup::top_down(SIZE);
+        s.extra_toml += &format!("[specular]\nrefraction = \"{refraction}\"\ninternal_reflections = \"dropped\"\n");
+        s.plane(2.0, 0.0, 0.5, true);
+        let m = s.gltf.material(json!({"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0.0,
+            "roughnessFactor": 0.0}, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_ior": {"ior": 1.5}}}));
+        let mesh = s.gltf.mesh(&prism(w, top, 0.1), Some(m), true);
+        s.gltf.node(json!({"name": "prism", "mesh": mesh, "extras": {"real": false}}));
+        let r = s.render();
+        let aovs = r.renderer.read_aovs(&r.ctx).unwrap();
+        let hit = aovs.iter().find(|a| a.name == "refraction_hit").expect("refraction_hit AOV");
+        let mrshade_render::outputs::AovImage::Linear(image) = &hit.image else { panic!("linear AOV") };
+        let (x, y) = (SIZE / 2, SIZE / 2);
+        let got = Vec3::from(image.get(x, y));
+        let entry = r.world_on_plane(x, y, top);
+        if refraction == "traced" {
+            assert!((got - Vec3::X).length() < 0.05, "traced: the ray leaves along +x, not {got}");
+        } else {
+            // From the entry, straight down to the hypotenuse (y = top − (x + w)), then along
+            // (1, −1, 0) to the floor.
+            let on_hypotenuse = Vec3::new(entry.x, top - (entry.x + w), entry.z);
+            let floor = on_hypotenuse + Vec3::new(on_hypotenuse.y, -on_hypotenuse.y, 0.0);
+            assert!((got - floor).length() < 0.02, "two interfaces: the fallback lands at {floor}, not {got}");
+        }
+    }
 }

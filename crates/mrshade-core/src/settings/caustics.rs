@@ -25,12 +25,13 @@ pub enum Concentration {
 pub struct CausticsSettings {
     /// Trace photons from every punctual light (and the probe) through the traced objects.
     /// Default on. They cost (1080p, NVIDIA H200, glass + mirror + spot, `dir`): 0.8 ms of
-    /// photon tracing and 1.5 ms of splatting at the defaults, over a 3.0 ms frame without.
+    /// photon tracing and 0.35 ms of splatting at the defaults, over a 3.1 ms frame without.
     pub enabled: bool,
     /// Side of each light's photon map (one photon per texel and branch, aimed at the
     /// bounding sphere of the traced objects). The thesis used 512 and 256 [T §7]; default
     /// 128: splatting a focused caustic is bound by blending many photons into the same
-    /// pixels (1080p, H200, one spot: 0.4 ms at 128², 1.3 ms at 256², 4.9 ms at 512²).
+    /// pixels (1080p, H200, one spot, measured while the splat still ran over every photon
+    /// slot: 0.4 ms at 128², 1.3 ms at 256², 4.9 ms at 512²).
     pub photon_resolution: u32,
     /// Smallest half-size of a photon's quad, metres (spec §2.17.2: "a user-defined minimum
     /// and maximum", 0.005 and 0.007 in the thesis's scene). Default 0.002.
@@ -40,18 +41,27 @@ pub struct CausticsSettings {
     /// 0.02: larger quads cost fill rate (1080p on the H200: 24 ms of splatting at 0.05 with the
     /// farther neighbour sizing the quads).
     pub splat_max: f32,
+    /// Largest half-size, metres, of the quads of photons farther apart than `splat_max`:
+    /// those (a convex mirror's diverging reflection of a lamp or of the sky) are drawn at
+    /// their own spacing into a coarse caustic buffer of 1/8 the fine one's resolution per
+    /// axis, where big quads cost few texels (Wyman's hierarchical caustic maps, in two
+    /// levels). Clamped to `splat_max` they kept their energy in separate dots. Default 0.05
+    /// (region FLIP desk-glass / desk-mirror and splat ms at 1080p on the H200: 0.02, i.e.
+    /// no coarse level, 0.107 / 0.113 and 1.04 ms; 0.05: 0.108 / 0.112 and 0.35 ms; 0.1:
+    /// 0.109 / 0.111 and 0.64 ms; 0.3: 0.110 / 0.110 and 1.66 ms).
+    pub splat_far_max: f32,
     /// A photon lights a pixel when its quad lies within this fraction of the camera distance
     /// of the pixel's surface (spec §2.17.4: "a specified epsilon range"). Default 0.02.
     pub depth_epsilon: f32,
     /// Directions of the probe's upper hemisphere that shoot photons each frame (a spherical
-    /// Fibonacci set, rotated every frame): the light a mirror or a glass redirects from the
-    /// sky onto the desk, which the documents do not render (their caustics are of spot
-    /// lights only). Each direction stands for 2π/n sr of the probe, looked up prefiltered
-    /// over about that much. Only with a method that shadows the probe (`dir`), whose
-    /// directional VPLs then treat transmissive casters as opaque: the photons carry the
-    /// light that passes. 0: off. Default 64 (desk-glass region FLIP 0.170 without, 0.146
-    /// with 16, 0.143 with 64 and 128; their splat at 1080p on the H200: 0.3 ms for 16,
-    /// 1.15 ms for 64).
+    /// Fibonacci set, rotated every frame): the light a glass focuses from the sky onto the
+    /// desk, which the documents do not render (their caustics are of spot lights only).
+    /// Each direction stands for 2π/n sr of the probe, looked up prefiltered over about that
+    /// much. Only with a method that shadows the probe (`dir`), whose directional VPLs then
+    /// treat transmissive casters as opaque: the photons carry the light that passes (what
+    /// mirrors reflect, the VPLs on them carry). 0: off. Default 64 (desk-glass region FLIP
+    /// 0.170 without, 0.146 with 16, 0.143 with 64 and 128, before internal reflections were
+    /// sampled).
     pub environment_directions: u32,
     /// Side of each probe direction's photon map (orthographic over the traced objects).
     /// Default 32.
@@ -74,6 +84,7 @@ impl Default for CausticsSettings {
             photon_resolution: 128,
             splat_min: 0.002,
             splat_max: 0.02,
+            splat_far_max: 0.05,
             depth_epsilon: 0.02,
             environment_directions: 64,
             environment_resolution: 32,
@@ -102,6 +113,11 @@ impl CausticsSettings {
             self.splat_max.is_finite() && self.splat_max >= self.splat_min && self.splat_max < 10.0,
             "caustics.splat_max",
             format!("must be a number of metres in [splat_min, 10), got {}", self.splat_max),
+        )?;
+        check(
+            self.splat_far_max.is_finite() && self.splat_far_max >= self.splat_max && self.splat_far_max < 10.0,
+            "caustics.splat_far_max",
+            format!("must be a number of metres in [splat_max, 10), got {}", self.splat_far_max),
         )?;
         check(
             self.depth_epsilon.is_finite() && self.depth_epsilon > 0.0 && self.depth_epsilon < 1.0,
@@ -163,6 +179,7 @@ mod tests {
             CausticsSettings { photon_resolution: 4, ..Default::default() },
             CausticsSettings { splat_min: 0.0, ..Default::default() },
             CausticsSettings { splat_max: 0.001, ..Default::default() },
+            CausticsSettings { splat_far_max: 0.01, ..Default::default() },
             CausticsSettings { depth_epsilon: f32::NAN, ..Default::default() },
             CausticsSettings { thesis_photons: 0, ..Default::default() },
             CausticsSettings { thesis_base: 1.0, ..Default::default() },
@@ -174,6 +191,7 @@ mod tests {
             "photon_resolution",
             "splat_min",
             "splat_max",
+            "splat_far_max",
             "depth_epsilon",
             "thesis_photons",
             "thesis_base",

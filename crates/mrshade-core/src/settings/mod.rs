@@ -18,7 +18,7 @@ pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalS
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;
-pub use specular::{Intersection, Refraction, RefractionPolicy, SpecularSettings};
+pub use specular::{InternalReflections, Intersection, Refraction, RefractionPolicy, SpecularSettings};
 
 use serde::{Deserialize, Serialize};
 

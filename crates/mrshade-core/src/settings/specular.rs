@@ -31,6 +31,21 @@ pub enum Refraction {
     TwoInterfaces,
 }
 
+/// What a traced refraction does with the share F that an interface reflects back inside.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum InternalReflections {
+    /// At each internal hit the ray stays inside with probability F (Schlick's Fresnel from
+    /// the outside angle), else leaves, a different choice per pixel and frame: unbiased,
+    /// and still images and the temporal smoothing average the choices. The longer paths
+    /// carry more of the glass's colour. Beyond the documents.
+    #[default]
+    Sampled,
+    /// Every ray leaves at its first internal hit that lets it out, weighted by 1 − F; the
+    /// share F is lost (total internal reflection is still followed). No noise.
+    Dropped,
+}
+
 /// What a refractive pixel shows when one of its two back-projections fails (spec §2.8).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -77,6 +92,9 @@ pub struct SpecularSettings {
     pub refraction_policy: RefractionPolicy,
     /// How refracted rays leave transmissive objects. Default `traced`.
     pub refraction: Refraction,
+    /// Partial internal reflections of traced refractions (and of photons). Default
+    /// `sampled`.
+    pub internal_reflections: InternalReflections,
 }
 
 impl Default for SpecularSettings {
@@ -92,6 +110,7 @@ impl Default for SpecularSettings {
             backprojection_epsilon: 0.02,
             refraction_policy: RefractionPolicy::KeepRefraction,
             refraction: Refraction::Traced,
+            internal_reflections: InternalReflections::Sampled,
         }
     }
 }

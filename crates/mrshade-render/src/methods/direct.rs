@@ -2,7 +2,7 @@
 //! `L_rv` and `L_r`: punctual lights with real-only and virtual-only shadow maps (Knecht
 //! Eq. 5.1–5.5) and the probe's unshadowed light.
 
-use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs};
+use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::raster::Rasterizer;
@@ -30,6 +30,9 @@ impl LightTransport for Direct {
     fn prepare(&mut self, _: &wgpu::Queue, _: &FrameChange) {}
     fn record(&mut self, _: &mut Recorder, _: &Rasterizer) {}
     fn indirect(&self) -> Option<&IndirectLight> {
+        None
+    }
+    fn point_light(&self) -> Option<PointLight<'_>> {
         None
     }
     fn read_aovs(&self, _: &GpuContext, _: &AovView) -> Result<Vec<Aov>> {

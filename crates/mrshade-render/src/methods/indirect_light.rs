@@ -64,3 +64,29 @@ impl IndirectLight {
         self.env_weight.size()
     }
 }
+
+/// A method's light at any surface point, not only where the camera looks: what the
+/// specular stage shades the surfaces with that reflections and refractions reach off screen
+/// (reflections spec §2.5: hit surfaces are shaded "with all primary lights and all VPLs").
+/// The VPLs of `shaders/lib/vpl.wgsl` with their imperfect shadow maps, evaluated by
+/// `shaders/lib/vpl_light.wgsl`; a method without VPLs hands on none.
+pub struct PointLight<'a> {
+    /// The VPL buffers of both parities (each frame writes one, keeping the other's VPLs).
+    pub vpls: &'a [wgpu::Buffer; 2],
+    /// Which of `vpls` the frame recorded last wrote.
+    pub parity: usize,
+    /// The ISMs' `IsmParams` uniform.
+    pub ism_params: &'a wgpu::Buffer,
+    /// The ISM atlas of the real casters.
+    pub ism_real: &'a wgpu::Buffer,
+    /// The ISM atlas of the virtual casters.
+    pub ism_virtual: &'a wgpu::Buffer,
+    /// VPL slots.
+    pub count: u32,
+    /// Lower bound of the VPL–receiver distance (m) in the geometry term.
+    pub d_min: f32,
+    /// Each point takes every `stride`-th VPL (scaled by `stride`), the subset rotating over
+    /// pixels and frames: `dir` gives its interleave factor I (a quarter of the VPLs at the
+    /// default 4), the cost of all of them being 0.45 ms at 1080p for a glass and a mirror.
+    pub stride: u32,
+}

@@ -17,7 +17,7 @@ pub mod dir;
 mod direct;
 mod indirect_light;
 
-pub use indirect_light::{FORMAT as INDIRECT_FORMAT, IndirectLight, TARGETS as INDIRECT_TARGETS};
+pub use indirect_light::{FORMAT as INDIRECT_FORMAT, IndirectLight, PointLight, TARGETS as INDIRECT_TARGETS};
 
 use crate::limits::Fit;
 use crate::outputs::{Aov, Composite};
@@ -87,6 +87,9 @@ pub trait LightTransport {
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer);
     /// The indirect light direct lighting adds, if the method computes any.
     fn indirect(&self) -> Option<&IndirectLight>;
+    /// The method's light at any surface point (for the surfaces reflections and
+    /// refractions reach), if it has more than the punctual lights and the probe.
+    fn point_light(&self) -> Option<PointLight<'_>>;
     /// The method's own AOVs, read back after a frame.
     fn read_aovs(&self, ctx: &GpuContext, view: &AovView) -> Result<Vec<Aov>>;
     /// Forgets the temporal history and numbers the next frame `frame` (its sampling seed):

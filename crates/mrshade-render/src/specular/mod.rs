@@ -17,6 +17,7 @@ pub mod caustics;
 pub mod impostors;
 pub mod interior;
 
+use crate::methods::PointLight;
 use crate::passes::direct::ShadowParams;
 use crate::passes::gbuffer::GBuffer;
 use crate::raster::{Casters, RasterView, Rasterizer};
@@ -28,7 +29,9 @@ use impostors::Impostors;
 use interior::Interiors;
 use mrshade_core::Differential;
 use mrshade_core::flags::Realness;
-use mrshade_core::settings::{Concentration, Refraction, RefractionPolicy, RenderSettings, SpecularSettings};
+use mrshade_core::settings::{
+    Concentration, InternalReflections, Refraction, RefractionPolicy, RenderSettings, SpecularSettings,
+};
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Scene;
@@ -41,6 +44,7 @@ struct SpecularParams {
     steps: UVec4,
     info: UVec4,
     tolerances: Vec4,
+    more: UVec4,
 }
 
 const NO_VIEW: u32 = u32::MAX;
@@ -69,6 +73,8 @@ pub struct SpecularInputs<'a> {
     pub camera_visibility: &'a wgpu::Buffer,
     /// The method's `L_rv`, `L_r`.
     pub radiance: &'a Differential<Target>,
+    /// The method's light at any point, which off-screen hit surfaces are shaded with.
+    pub point_light: Option<PointLight<'a>>,
     /// The photo at the output size.
     pub photo: &'a Target,
     /// The composite's α parameters.
@@ -140,13 +146,18 @@ pub struct SpecularStage {
     camera_views: Vec<RasterView>,
     /// Reflection and refraction G-buffers.
     pub gbuffers: SpecularGBuffers,
-    caustics: Option<caustics::Caustics>,
-    /// The caustic buffer (AOVs `caustics_rv`, `caustics_r`).
-    pub caustic_buffer: Differential<Target>,
+    /// Photon tracing and splatting, when the scene shoots photons.
+    pub caustics: Option<caustics::Caustics>,
+    /// The caustic buffer (AOVs `caustics_rv`, `caustics_r`, `caustics_coarse_rv`,
+    /// `caustics_coarse_r`).
+    pub caustic_buffer: caustics::CausticBuffer,
     trace: wgpu::ComputePipeline,
     trace_groups: [wgpu::BindGroup; 3],
     resolve: wgpu::ComputePipeline,
-    resolve_groups: [wgpu::BindGroup; 4],
+    /// Groups 0, 2 and 3 of the resolve.
+    resolve_groups: [wgpu::BindGroup; 3],
+    /// Group 1 of the resolve, with the method's VPLs of either parity.
+    resolve_scene_groups: [wgpu::BindGroup; 2],
     size: (u32, u32),
 }
 
@@ -244,14 +255,25 @@ impl SpecularStage {
                 inputs.settings.caustics.thesis_photons,
                 inputs.settings.caustics.buffer_divisor,
             ),
-            tolerances: Vec4::new(settings.backprojection_epsilon, inputs.settings.caustics.thesis_base, 0.0, 0.0),
+            tolerances: Vec4::new(
+                settings.backprojection_epsilon,
+                inputs.settings.caustics.thesis_base,
+                inputs.point_light.as_ref().map_or(0.0, |p| p.d_min),
+                0.0,
+            ),
+            more: UVec4::new(
+                inputs.point_light.as_ref().map_or(0, |p| p.count),
+                inputs.point_light.as_ref().map_or(1, |p| p.stride.max(1)),
+                (settings.internal_reflections == InternalReflections::Sampled) as u32,
+                0,
+            ),
         };
         let params = storage("specular/params", bytemuck::bytes_of(&params), wgpu::BufferUsages::UNIFORM);
         let shadow_params = ShadowParams::new(&inputs.settings.shadows, false);
         let shadow_params =
             storage("specular/shadow_params", bytemuck::bytes_of(&shadow_params), wgpu::BufferUsages::UNIFORM);
         let gbuffers = SpecularGBuffers::new(device, size);
-        let caustic_buffer = caustics::caustic_buffer(device, size, inputs.settings.caustics.buffer_divisor);
+        let caustic_buffer = caustics::CausticBuffer::new(device, size, inputs.settings.caustics.buffer_divisor);
         // Photons start on the rigid traced instances, whose BVHs they are traced into.
         let casters: Vec<usize> = traced_instances.iter().copied().filter(|&i| interiors.has(i)).collect();
         let caustics = caustics::Caustics::new(
@@ -363,8 +385,10 @@ impl SpecularStage {
             bind::texture(4, cs, uint, d2),
         ];
         resolve_entries.extend((5..=18).map(|b| bind::texture(b, cs, unfilterable, d2)));
+        resolve_entries.push(bind::uniform(19, cs));
+        resolve_entries.extend((20..=21).map(|b| bind::texture(b, cs, unfilterable, d2)));
         let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
-        let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(17));
+        let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(20));
         // The probe (bindings 0–3) and the material textures hit surfaces are shaded with.
         let mut probe_entries = GpuProbe::layout_entries(cs).to_vec();
         probe_entries.extend([
@@ -391,9 +415,22 @@ impl SpecularStage {
         resolve_textures.extend(gbuffers.all().map(|t| TextureView(&t.view)));
         resolve_textures.extend([
             TextureView(&g.albedo_metallic.view),
-            TextureView(&caustic_buffer.rv.view),
-            TextureView(&caustic_buffer.r.view),
+            TextureView(&caustic_buffer.levels[0].rv.view),
+            TextureView(&caustic_buffer.levels[0].r.view),
         ]);
+        // The method's VPLs and ISMs, or placeholders that no shader reads (0 VPL slots).
+        let placeholder = |label: &str, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false })
+        };
+        let no_vpls = placeholder("specular/no_vpls", 256, wgpu::BufferUsages::STORAGE);
+        let no_ism_params = placeholder("specular/no_ism_params", 256, wgpu::BufferUsages::UNIFORM);
+        let (vpls, ism_params, ism_real, ism_virtual) = match &inputs.point_light {
+            Some(p) => ([&p.vpls[0], &p.vpls[1]], p.ism_params, p.ism_real, p.ism_virtual),
+            None => ([&no_vpls, &no_vpls], &no_ism_params, &no_vpls, &no_vpls),
+        };
+        resolve_textures.push(ism_params.as_entire_binding());
+        resolve_textures
+            .extend([TextureView(&caustic_buffer.levels[1].rv.view), TextureView(&caustic_buffer.levels[1].r.view)]);
         let mut resolve_buffers: Vec<wgpu::BindingResource> =
             scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
         resolve_buffers.extend([
@@ -403,9 +440,13 @@ impl SpecularStage {
             inputs.shadow_maps.as_entire_binding(),
         ]);
         resolve_buffers.extend(interior_buffers.iter().map(|b| b.as_entire_binding()));
+        let resolve_scene_groups = [0, 1].map(|parity| {
+            let mut buffers = resolve_buffers.clone();
+            buffers.extend([vpls[parity], ism_real, ism_virtual].map(|b| b.as_entire_binding()));
+            bind::group(device, &format!("specular/resolve_scene_{parity}"), &resolve_scene, &buffers)
+        });
         let resolve_groups = [
             bind::group(device, "specular/resolve_inputs", &resolve_inputs, &resolve_textures),
-            bind::group(device, "specular/resolve_scene", &resolve_scene, &resolve_buffers),
             bind::group(
                 device,
                 "specular/resolve_probe",
@@ -440,6 +481,7 @@ impl SpecularStage {
             trace_groups,
             resolve,
             resolve_groups,
+            resolve_scene_groups,
             size,
         })
     }
@@ -457,8 +499,9 @@ impl SpecularStage {
         }
     }
 
-    /// Impostors, camera views, trace, resolve.
-    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+    /// Impostors, camera views, trace, resolve (with the method's VPLs of `vpl_parity`, see
+    /// [`PointLight::parity`]).
+    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer, vpl_parity: usize) {
         self.impostors.record(rec, rasterizer);
         rasterizer.record(rec, "specular/camera_views", &self.camera_views);
         let groups = |pass: &mut wgpu::ComputePass, pipeline, groups: &[wgpu::BindGroup]| {
@@ -476,7 +519,11 @@ impl SpecularStage {
             caustics.record(rec, &self.caustic_buffer);
         }
         rec.compute(Self::RESOLVE_LABEL, |pass| {
-            groups(pass, &self.resolve, &self.resolve_groups);
+            pass.set_pipeline(&self.resolve);
+            let [inputs, probe, output] = &self.resolve_groups;
+            for (i, g) in [inputs, &self.resolve_scene_groups[vpl_parity], probe, output].into_iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
+            }
             pass.dispatch_workgroups(w, h, 1);
         });
     }
@@ -508,6 +555,11 @@ pub const RESOLVE_SHADER: &str = wgsl!(
     "../../shaders/lib/punctual.wgsl",
     "../../shaders/lib/material_textures.wgsl",
     "../../shaders/lib/alpha.wgsl",
+    "../../shaders/lib/sampling.wgsl",
+    "../../shaders/lib/vpl.wgsl",
+    "../../shaders/lib/ism.wgsl",
+    "../../shaders/lib/vpl_light.wgsl",
     "tracing.wgsl",
+    "caustics/levels.wgsl",
     "resolve.wgsl",
 );

@@ -77,17 +77,6 @@ fn store_nothing(pixel: vec2i) {
     textureStore(out_refraction_weight, pixel, vec4f(0.0));
 }
 
-// A GGX microfacet normal around `n` for roughness `roughness` (the normal itself when smooth).
-fn microfacet_normal(n: vec3f, roughness: f32, pixel: vec2u) -> vec3f {
-    let alpha = roughness * roughness;
-    if (alpha < 1e-3) { return n; }
-    let seed = hash_u32(pixel.x * 73856093u ^ pixel.y * 19349663u ^ u32(frame.exposure_env.w) * 83492791u);
-    let u = vec2f(f32(seed & 0xffffu) / 65536.0, f32(seed >> 16u) / 65536.0);
-    let cos_theta = sqrt((1.0 - u.x) / (1.0 + (alpha * alpha - 1.0) * u.x));
-    let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
-    let phi = 2.0 * PI * u.y;
-    return normalize(to_world(vec3f(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta), n));
-}
 
 // A glossy ray that leaves the scene sees the probe prefiltered for the lobe, looked up along
 // the mirror direction (split sum) rather than along the one sampled direction, which would
@@ -136,13 +125,13 @@ fn refraction_exit(pixel: vec2i, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32
     }
     exit.position = p2;
     exit.thickness = distance(p1, p2);
-    exit.cos_exit = clamp(dot(rt, n_out), 0.0, 1.0);
+    exit.leave = 1.0 - fresnel_ior(ior, clamp(dot(rt, n_out), 0.0, 1.0));
     let out = refract(rt, -n_out, ior);
     if (all(out == vec3f(0.0))) {
         // Total internal reflection, neglected as in the thesis: the tangent at p2.
         let tangent = rt - dot(rt, n_out) * n_out;
         exit.dir = select(rt, normalize(tangent), dot(tangent, tangent) > 1e-8);
-        exit.cos_exit = 1.0;
+        exit.leave = 1.0 - fresnel_ior(ior, 1.0);
     } else {
         exit.dir = normalize(out);
     }
@@ -173,7 +162,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     );
     let occlusion = textureLoad(gbuffer_emission_occlusion, pixel, 0).a;
     let view_dir = -s.view;
-    let n = microfacet_normal(s.normal, s.roughness, id.xy);
+    let n = microfacet_normal(s.normal, s.roughness, hash_u32(id.x * 73856093u ^ id.y * 19349663u ^ u32(frame.exposure_env.w) * 83492791u));
     // Reflection (spec §2.11): r = 2(n·v)n − v, weighted by the split-sum albedo of the lobe.
     let ab = env_dfg(max(dot(s.normal, s.view), 1e-4), s.roughness);
     let specular_albedo = surface_f0(s) * ab.x + surface_f90(s) * ab.y;
@@ -200,7 +189,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let ior = max(m.transmission.y, 1.0);
     var exit: Exit;
     if (interiors[owner].info.x != NO_VIEW && owners[owner].info.w == 1u) {
-        exit = traced_exit(owner, p1, view_dir, n, ior);
+        let seed = hash_u32(id.y * frame.size.x + id.x) ^ hash_u32(u32(frame.exposure_env.w) + 0x9e3779b9u);
+        exit = traced_exit(owner, p1, view_dir, n, ior, seed);
     } else {
         exit = refraction_exit(pixel, p1, view_dir, n, ior, owners[owner].info.z);
     }

@@ -15,8 +15,12 @@ struct SpecularParams {
     // refraction policy (0 keep refraction, 1 rendered), caustic concentration (0 energy,
     // 1 thesis), k_c n_max, caustic buffer divisor
     info: vec4u,
-    // back-projection epsilon (fraction of the camera distance), k_c base, unused…
+    // back-projection epsilon (fraction of the camera distance), k_c base, the VPLs' d_min
+    // (m), unused
     tolerances: vec4f,
+    // the method's VPL slots (0: none), the stride of the VPL subset a hit surface is shaded
+    // with, 1 if internal reflections are sampled (0: dropped), unused
+    more: vec4u,
 }
 
 struct Impostor {
@@ -202,18 +206,34 @@ struct Exit {
     position: vec3f,
     dir: vec3f,
     thickness: f32,
-    // Cosine at the exit interface (for its Fresnel term; 1 at a fallback).
-    cos_exit: f32,
+    // The share that leaves through the exit interface: 1 − F there, or 1 where the choice
+    // between leaving and reflecting inside was sampled with probability F.
+    leave: f32,
+}
+
+// A GGX microfacet normal around `n` for roughness `roughness` (the normal itself when
+// smooth), drawn from the distribution of normals by the random bits of `seed`.
+fn microfacet_normal(n: vec3f, roughness: f32, seed: u32) -> vec3f {
+    let alpha = roughness * roughness;
+    if (alpha < 1e-3) { return n; }
+    let u = vec2f(f32(seed & 0xffffu) / 65536.0, f32(seed >> 16u) / 65536.0);
+    let cos_theta = sqrt((1.0 - u.x) / (1.0 + (alpha * alpha - 1.0) * u.x));
+    let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    let phi = 2.0 * PI * u.y;
+    return normalize(to_world(vec3f(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta), n));
 }
 
 // Internal events a traced refraction follows before it gives up and leaves by the tangent.
 const MAX_INTERNAL: u32 = 8u;
 
 // The refracted view ray followed exactly through the instance's inside: at each internal
-// hit it leaves (weighted by 1 − F there) unless it is totally reflected, which sends it on
-// inside. The internally reflected part F of a leaving ray is dropped.
-fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32) -> Exit {
+// hit it leaves, or is reflected on inside: always when totally reflected, else with
+// probability F when internal reflections are sampled (params.more.z; `seed` makes the
+// choices), F being Schlick's from the outside angle (the larger one, for light leaving the
+// denser medium). Dropped, the leaving ray is weighted by 1 − F and the share F is lost.
+fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32, seed: u32) -> Exit {
     let eps = 1e-5 * max(1.0, length(p1));
+    let sampled = params.more.z == 1u;
     var d = normalize(refract(view_dir, n1, 1.0 / ior));
     var o = p1;
     var exit = Exit(p1, d, 0.0, 1.0);
@@ -226,10 +246,15 @@ fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32) -> E
         let n_out = facing_normal(h, d);
         let out = refract(d, -n_out, ior);
         if (any(out != vec3f(0.0))) {
-            exit.position = o;
-            exit.dir = normalize(out);
-            exit.cos_exit = clamp(dot(d, n_out), 0.0, 1.0);
-            return exit;
+            let leaving = normalize(out);
+            let f = fresnel_ior(ior, clamp(dot(leaving, n_out), 0.0, 1.0));
+            let u = f32(hash_u32(seed ^ hash_u32(k + 1u))) * 2.3283064365386963e-10;
+            if (!sampled || u >= f) {
+                exit.position = o;
+                exit.dir = leaving;
+                exit.leave = select(1.0 - f, 1.0, sampled);
+                return exit;
+            }
         }
         d = reflect(d, -n_out);
     }
@@ -247,7 +272,7 @@ fn exit_transmittance(m: Material, base: vec3f, exit: Exit, ior: f32) -> vec3f {
         -log(max(m.attenuation_cutoff.rgb, vec3f(1e-4))) / m.transmission.w,
         m.transmission.w < 1e29,
     );
-    return (1.0 - fresnel_ior(ior, exit.cos_exit)) * base * exp(-absorption * exit.thickness);
+    return exit.leave * base * exp(-absorption * exit.thickness);
 }
 
 // Exact interiors of rigid transmissive instances (see interior.rs): a BVH per instance in

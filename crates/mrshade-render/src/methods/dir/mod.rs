@@ -21,7 +21,7 @@ pub(crate) use limits::{estimate, fit};
 pub use points::{GpuPoint, PointAnchor, PointCloud};
 pub use probe_pyramid::ProbePyramid;
 
-use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs};
+use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::outputs::Aov;
 use crate::raster::Rasterizer;
 use anyhow::Result;
@@ -57,6 +57,10 @@ pub struct DirMethod {
     still_frames: u32,
     /// Whether this frame's points on deformed instances must follow them.
     follow_points: bool,
+    /// Lower bound of the VPL–receiver distance (m): `clamp_distance` × the scene's radius.
+    d_min: f32,
+    /// The interleave factor I (`dir.interleave`).
+    interleave: u32,
 }
 
 /// Builds every pass of the method (the registry's `build`).
@@ -85,6 +89,7 @@ impl DirMethod {
         let ism_resources = IsmResources::new(ctx, &session.scene, &scene.geometry, settings, center, radius);
         let vpl = VplPass::new(ctx, session, settings, scene, &rsm, &ism_resources, center, radius);
         let ism = IsmPass::new(ctx, &ism_resources, &scene.geometry, &vpl.vpls);
+        let d_min = settings.clamp_distance * radius;
         let interleaved = IndirectLight::new(&ctx.device, "indirect/interleaved", internal_size);
         let indirect = IndirectPass::new(
             ctx,
@@ -95,7 +100,7 @@ impl DirMethod {
             &ism_resources,
             settings,
             session.settings.probe_caustics(),
-            radius,
+            d_min,
             radiance,
             &interleaved,
         );
@@ -112,6 +117,8 @@ impl DirMethod {
             rendered: 0,
             still_frames: 0,
             follow_points: false,
+            d_min,
+            interleave: settings.interleave,
         }
     }
 
@@ -159,6 +166,20 @@ impl LightTransport for DirMethod {
 
     fn indirect(&self) -> Option<&IndirectLight> {
         Some(&self.filter.merged)
+    }
+
+    fn point_light(&self) -> Option<PointLight<'_>> {
+        Some(PointLight {
+            vpls: &self.vpl.vpls,
+            // `record` wrote the VPLs of parity (frame − 1) mod 2 and counted the frame.
+            parity: (self.frame.wrapping_add(1) % 2) as usize,
+            ism_params: &self.ism_resources.params_buffer,
+            ism_real: &self.ism_resources.atlas_real,
+            ism_virtual: &self.ism_resources.atlas_virtual,
+            count: self.ism_resources.params.tile.z,
+            d_min: self.d_min,
+            stride: self.interleave,
+        })
     }
 
     fn read_aovs(&self, ctx: &GpuContext, view: &AovView) -> Result<Vec<Aov>> {

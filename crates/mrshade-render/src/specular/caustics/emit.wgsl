@@ -20,6 +20,9 @@
 @group(1) @binding(14) var<storage, read> bvh_corners: array<vec4f>;
 
 @group(2) @binding(0) var<storage, read_write> photons: array<Photon>;
+// The landed photons of each caustic level (level × photon_slots() + i), and their draws.
+@group(2) @binding(1) var<storage, read_write> splat_list: array<u32>;
+@group(2) @binding(2) var<storage, read_write> splat_draws: array<SplatDraw, 2>;
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -148,17 +151,31 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let metallic = m.params.x;
     let f0 = mix(m.dielectric.rgb, m.base_color.rgb, metallic);
     let reflectance = schlick(f0, mix(m.dielectric.a, 1.0, metallic), cos_i);
-    let reflected = reflect(e.dir, n);
+    // A glossy caster reflects each photon into its GGX lobe: one microfacet per photon and
+    // frame, as the camera's rays (stills and temporal smoothing average them): a rough
+    // metal's caustic of a lamp is a glow, not a mirror's sharp image.
+    let roughness = clamp(m.params.y, 0.0, 1.0);
+    let lobe_seed = hash_u32(photon_index(id.z, 0u, id.xy) * 2654435761u ^ u32(frame.exposure_env.w) * 83492791u);
+    var reflected = reflect(e.dir, microfacet_normal(n, roughness, lobe_seed));
+    if (dot(reflected, n) <= 0.0) { reflected = reflect(e.dir, n); }
     let concave = interiors[h.instance].info.y == 1u;
     let rv = min(v_r, v_v);
-    photons[photon_index(id.z, 0u, id.xy)] = land(h.position, reflected, h.instance, false, concave, power * reflectance * rv);
-    if (all_real) {
-        photons[photon_index(id.z, 2u, id.xy)] = land(h.position, reflected, h.instance, true, concave, power * reflectance * v_r);
+    // The probe's light reflected by a traced surface is the method's: `dir`'s VPLs on that
+    // surface bounce it (its directional VPLs see mirrors as opaque casters and light them),
+    // so the probe's photons carry only what passes through glass, which no VPL carries.
+    // Reflected probe photons counted that light twice (desk-mirror region FLIP 0.109 with
+    // caustics off, 0.112 on).
+    if (!from_probe) {
+        photons[photon_index(id.z, 0u, id.xy)] = land(h.position, reflected, h.instance, false, concave, power * reflectance * rv);
+        if (all_real) {
+            photons[photon_index(id.z, 2u, id.xy)] = land(h.position, reflected, h.instance, true, concave, power * reflectance * v_r);
+        }
     }
     let transmission = m.transmission.x * (1.0 - metallic);
     if (transmission <= 0.0) { return; }
     let ior = max(m.transmission.y, 1.0);
-    let exit = traced_exit(h.instance, h.position, e.dir, n, ior);
+    let seed = hash_u32(photon_index(id.z, 1u, id.xy)) ^ hash_u32(u32(frame.exposure_env.w) + 0x9e3779b9u);
+    let exit = traced_exit(h.instance, h.position, e.dir, n, ior, seed);
     let through = power * transmission * (1.0 - fresnel_ior(ior, cos_i)) * exit_transmittance(m, m.base_color.rgb, exit, ior);
     photons[photon_index(id.z, 1u, id.xy)] = land(exit.position, exit.dir, h.instance, false, true, through * rv);
     if (all_real) {
@@ -185,15 +202,25 @@ fn nearer(a: f32, b: f32) -> f32 {
 
 // Each landed photon's quad half-size (spec §2.17.2, "computed from the world-position of the
 // adjacent photons, similar as in the work of Wyman"), into normal.w, clamped to [splat_min,
-// splat_max]: the photon spacing along each axis of the map is the nearer neighbour's
+// splat_far_max]: the photon spacing along each axis of the map is the nearer neighbour's
 // distance, so that one neighbour across a discontinuity (another surface, the caster's
 // silhouette) does not blow the quad up; the wider axis sizes the quad. Once per photon
-// here, not per vertex of its quad.
+// here, not per vertex of its quad. Then the photon joins its level's splat list: counted in
+// workgroup memory first, so that a workgroup adds to each global count once.
+var<workgroup> group_count: array<atomic<u32>, 2>;
+var<workgroup> group_base: array<u32, 2>;
+
 @compute @workgroup_size(8, 8)
-fn cs_size(@builtin(global_invocation_id) id: vec3u) {
+fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    if (local < 2u) { atomicStore(&group_count[local], 0u); }
+    workgroupBarrier();
     let res = caustics.info.x;
-    if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
+    let inside = all(id.xy < vec2u(res)) && id.z < caustics.info.y;
+    // Per kind: the photon's index, its level and its slot within the workgroup's share.
+    var listed = array<vec3u, 4>(vec3u(0u), vec3u(0u), vec3u(0u), vec3u(0u));
+    var landed = array<bool, 4>(false, false, false, false);
     for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
+        if (!inside) { break; }
         let index = photon_index(id.z, kind, id.xy);
         let photon = photons[index];
         if (photon.position.w == 0.0) { continue; }
@@ -202,6 +229,21 @@ fn cs_size(@builtin(global_invocation_id) id: vec3u) {
             nearer(neighbour_distance(index, id.xy, p, -1, 0), neighbour_distance(index, id.xy, p, 1, 0)),
             nearer(neighbour_distance(index, id.xy, p, 0, -1), neighbour_distance(index, id.xy, p, 0, 1)),
         );
-        photons[index].normal.w = clamp(spacing, caustics.splat.x, caustics.splat.y);
+        let size = clamp(spacing, caustics.splat.x, caustics.splat.z);
+        photons[index].normal.w = size;
+        let level = select(0u, 1u, size > caustics.splat.y);
+        listed[kind] = vec3u(index, level, atomicAdd(&group_count[level], 1u));
+        landed[kind] = true;
+    }
+    workgroupBarrier();
+    if (local < 2u) {
+        let count = atomicLoad(&group_count[local]);
+        group_base[local] = atomicAdd(&splat_draws[local].vertex_count, 6u * count) / 6u;
+    }
+    workgroupBarrier();
+    for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
+        if (!landed[kind]) { continue; }
+        let l = listed[kind];
+        splat_list[l.y * photon_slots() + group_base[l.y] + l.z] = l.x;
     }
 }

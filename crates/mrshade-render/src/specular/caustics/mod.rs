@@ -21,14 +21,23 @@ pub struct CausticParams {
     pub info: UVec4,
     /// Bounding sphere of the casters: centre, radius.
     pub casters: Vec4,
-    /// Splat half-size min, max (metres), depth epsilon, unused.
+    /// Splat half-size min, max of the fine level, max of the coarse level (metres), depth
+    /// epsilon.
     pub splat: Vec4,
 }
+
+/// The coarse caustic level has 1/this of the fine level's texels per axis (`COARSE_LEVEL_FACTOR`
+/// in levels.wgsl).
+pub const COARSE_LEVEL_FACTOR: u32 = 8;
 
 /// Bytes of one photon (`Photon` in photons.wgsl).
 pub const PHOTON_BYTES: u64 = 48;
 /// Photons per light and photon-map texel: reflected and refracted, of `L_rv` and of `L_r`.
 pub const PHOTON_KINDS: u64 = 4;
+/// Bytes per photon slot of the splat lists (one `u32` per caustic level).
+pub const SPLAT_LIST_BYTES: u64 = 8;
+/// The two levels' indirect draws (`SplatDraw` in photons.wgsl) before cs_size counts.
+const EMPTY_DRAWS: [u32; 8] = [0, 1, 0, 0, 0, 1, 0, 0];
 
 /// Buffers of the specular stage the photons are traced through.
 pub struct CausticInputs<'a> {
@@ -56,9 +65,15 @@ struct PhotonGroup {
     /// 1 for probe directions.
     from_probe: u32,
     params: wgpu::Buffer,
-    /// The photon G-buffer lives in these (wgpu bind groups keep their buffers).
+    /// The photon G-buffer (`Photon` in photons.wgsl), per source, kind and texel.
+    photons: wgpu::Buffer,
+    /// The photon G-buffer and the splat lists live in these (wgpu bind groups keep their
+    /// buffers).
     emit_groups: [wgpu::BindGroup; 2],
-    splat_group: wgpu::BindGroup,
+    /// The indirect draw of each level (`SplatDraw` in photons.wgsl).
+    draws: wgpu::Buffer,
+    /// Per level.
+    splat_groups: [wgpu::BindGroup; 2],
 }
 
 /// The photon tracing and splatting that fill the caustic buffer.
@@ -110,7 +125,11 @@ impl Caustics {
         );
         let emit_scene =
             bind::layout(device, "specular/photons_scene", &(0..15).map(|i| bind::storage(i, cs)).collect::<Vec<_>>());
-        let emit_output = bind::layout(device, "specular/photons_output", &[bind::storage_rw(0, cs)]);
+        let emit_output = bind::layout(
+            device,
+            "specular/photons_output",
+            &[bind::storage_rw(0, cs), bind::storage_rw(1, cs), bind::storage_rw(2, cs)],
+        );
         let emit_probe = bind::layout(device, "specular/photons_probe", &GpuProbe::layout_entries(cs));
         let [impostors, owners, impostor_texels] = inputs.impostors;
         let scene_buffers: [&wgpu::Buffer; 15] = [
@@ -155,8 +174,17 @@ impl Caustics {
                 bind::storage(2, vf),
                 bind::texture(3, fragment, unfilterable, d2),
                 bind::texture(4, fragment, unfilterable, d2),
+                bind::storage(5, wgpu::ShaderStages::VERTEX),
+                bind::uniform(6, vf),
             ],
         );
+        let levels = [0u32, 1].map(|level| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("specular/caustic_level_{level}")),
+                contents: bytemuck::bytes_of(&UVec4::new(level, 0, 0, 0)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        });
         let half = wgpu::TextureFormat::Rgba16Float;
         let splat = mrshade_gpu::shader::additive_render_pipeline(
             device,
@@ -179,11 +207,23 @@ impl Caustics {
                 contents: bytemuck::bytes_of(&CausticParams::zeroed()),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
+            let slots = sources as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64;
             let photons = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: sources as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64 * PHOTON_BYTES,
+                size: slots * PHOTON_BYTES,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
+            });
+            let list = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("{label}/splat_list")),
+                size: slots * SPLAT_LIST_BYTES,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
+            let draws = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label}/splat_draws")),
+                contents: bytemuck::cast_slice(&EMPTY_DRAWS),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
             });
             let emit_groups = [
                 bind::group(
@@ -192,21 +232,39 @@ impl Caustics {
                     &emit_uniforms,
                     &[frame, inputs.specular_params, &params, inputs.shadow_params].map(|b| b.as_entire_binding()),
                 ),
-                bind::group(device, &format!("{label}/output"), &emit_output, &[photons.as_entire_binding()]),
+                bind::group(
+                    device,
+                    &format!("{label}/output"),
+                    &emit_output,
+                    &[&photons, &list, &draws].map(|b| b.as_entire_binding()),
+                ),
             ];
-            let splat_group = bind::group(
-                device,
-                &format!("{label}/splat"),
-                &splat_layout,
-                &[
-                    frame.as_entire_binding(),
-                    params.as_entire_binding(),
-                    photons.as_entire_binding(),
-                    TextureView(&inputs.depth_motion.view),
-                    TextureView(&inputs.normal_roughness.view),
-                ],
-            );
-            groups.push(PhotonGroup { sources, resolution, from_probe, params, emit_groups, splat_group });
+            let splat_groups = [0, 1].map(|level| {
+                bind::group(
+                    device,
+                    &format!("{label}/splat_{level}"),
+                    &splat_layout,
+                    &[
+                        frame.as_entire_binding(),
+                        params.as_entire_binding(),
+                        photons.as_entire_binding(),
+                        TextureView(&inputs.depth_motion.view),
+                        TextureView(&inputs.normal_roughness.view),
+                        list.as_entire_binding(),
+                        levels[level].as_entire_binding(),
+                    ],
+                )
+            });
+            groups.push(PhotonGroup {
+                sources,
+                resolution,
+                from_probe,
+                params,
+                photons,
+                emit_groups,
+                draws,
+                splat_groups,
+            });
         }
         let scene_group =
             bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
@@ -214,7 +272,7 @@ impl Caustics {
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their
-    /// world boxes.
+    /// world boxes; empties the splat lists' draws (before every frame's `record`).
     pub fn prepare(&self, queue: &wgpu::Queue, geometry: &Geometry) {
         let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
         for &i in &self.casters {
@@ -227,14 +285,20 @@ impl Caustics {
             let params = CausticParams {
                 info: UVec4::new(g.resolution, g.sources, g.from_probe, self.settings.buffer_divisor),
                 casters: sphere,
-                splat: Vec4::new(self.settings.splat_min, self.settings.splat_max, self.settings.depth_epsilon, 0.0),
+                splat: Vec4::new(
+                    self.settings.splat_min,
+                    self.settings.splat_max,
+                    self.settings.splat_far_max,
+                    self.settings.depth_epsilon,
+                ),
             };
             queue.write_buffer(&g.params, 0, bytemuck::bytes_of(&params));
+            queue.write_buffer(&g.draws, 0, bytemuck::cast_slice(&EMPTY_DRAWS));
         }
     }
 
-    /// Photon tracing, then splatting into `buffer` (see [`caustic_buffer`]).
-    pub fn record(&self, rec: &mut Recorder, buffer: &Differential<Target>) {
+    /// Photon tracing, then splatting into both levels of `buffer`.
+    pub fn record(&self, rec: &mut Recorder, buffer: &CausticBuffer) {
         rec.compute(Self::PHOTONS_LABEL, |pass| {
             for pipeline in [&self.emit, &self.size] {
                 pass.set_pipeline(pipeline);
@@ -258,27 +322,94 @@ impl Caustics {
                 },
             })
         }
-        rec.render(Self::SPLAT_LABEL, &[clear(&buffer.rv), clear(&buffer.r)], None, |pass| {
-            pass.set_pipeline(&self.splat);
-            for g in &self.groups {
-                pass.set_bind_group(0, &g.splat_group, &[]);
-                pass.draw(0..6 * g.sources * PHOTON_KINDS as u32 * g.resolution * g.resolution, 0..1);
-            }
-        });
+        // Each level draws the photons cs_size listed for it.
+        for (level, target) in buffer.levels.iter().enumerate() {
+            rec.render(Self::SPLAT_LABEL, &[clear(&target.rv), clear(&target.r)], None, |pass| {
+                pass.set_pipeline(&self.splat);
+                for g in &self.groups {
+                    pass.set_bind_group(0, &g.splat_groups[level], &[]);
+                    pass.draw_indirect(&g.draws, level as u64 * 16);
+                }
+            });
+        }
     }
 }
 
-/// The caustic buffer of a frame of `size` (1/`divisor` of it along each axis): per
-/// differential half, the irradiance of the photons (rgb, W/m²) and their count (a). Zero
-/// where no caustic is traced.
-pub fn caustic_buffer(device: &wgpu::Device, size: (u32, u32), divisor: u32) -> Differential<Target> {
-    let size = (size.0.div_ceil(divisor), size.1.div_ceil(divisor));
-    let usage =
-        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
-    let half = wgpu::TextureFormat::Rgba16Float;
-    Differential {
-        rv: Target::new_2d(device, "specular/caustics_rv", size, half, usage),
-        r: Target::new_2d(device, "specular/caustics_r", size, half, usage),
+/// One photon of the last frame that landed on a diffuse surface (read back for the
+/// `photon_hits` AOV and for tests).
+#[derive(Clone, Copy, Debug)]
+pub struct LandedPhoton {
+    /// Whether it came from a probe direction (else from a punctual light).
+    pub from_probe: bool,
+    /// The light or probe direction it came from.
+    pub source: u32,
+    /// 0 reflected, 1 refracted (of `L_rv`); 2, 3 the same of `L_r`.
+    pub kind: u32,
+    /// Its texel in the source's photon map.
+    pub texel: (u32, u32),
+    /// Where it landed.
+    pub position: Vec3,
+    /// The receiver's normal there.
+    pub normal: Vec3,
+    /// Its quad's half-size, metres.
+    pub half_size: f32,
+    /// Its power, W.
+    pub power: Vec3,
+}
+
+impl Caustics {
+    /// The photons of the last frame that landed, read back from the GPU.
+    pub fn read_photons(&self, ctx: &GpuContext) -> anyhow::Result<Vec<LandedPhoton>> {
+        let mut out = Vec::new();
+        for g in &self.groups {
+            let bytes = mrshade_gpu::readback::read_buffer(ctx, &g.photons)?;
+            let floats: &[f32] = bytemuck::cast_slice(&bytes);
+            let res = g.resolution as usize;
+            for (index, p) in floats.chunks_exact(PHOTON_BYTES as usize / 4).enumerate() {
+                if p[3] == 0.0 {
+                    continue;
+                }
+                let (texel, rest) = (index % (res * res), index / (res * res));
+                out.push(LandedPhoton {
+                    from_probe: g.from_probe == 1,
+                    source: (rest / PHOTON_KINDS as usize) as u32,
+                    kind: (rest % PHOTON_KINDS as usize) as u32,
+                    texel: ((texel % res) as u32, (texel / res) as u32),
+                    position: Vec3::new(p[0], p[1], p[2]),
+                    normal: Vec3::new(p[4], p[5], p[6]),
+                    half_size: p[7],
+                    power: Vec3::new(p[8], p[9], p[10]),
+                });
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The caustic buffer of a frame, in two levels: per differential half, the irradiance of
+/// the photons (rgb, W/m²) and their count (a). Zero where no caustic is traced.
+pub struct CausticBuffer {
+    /// The fine level (1/`buffer_divisor` of the frame along each axis) of the photons at
+    /// most `splat_max` apart, and the coarse one (1/`COARSE_LEVEL_FACTOR` of that) of those
+    /// farther apart.
+    pub levels: [Differential<Target>; 2],
+}
+
+impl CausticBuffer {
+    /// Both levels for a frame of `size` and the fine level's `divisor`.
+    pub fn new(device: &wgpu::Device, size: (u32, u32), divisor: u32) -> Self {
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC;
+        let half = wgpu::TextureFormat::Rgba16Float;
+        let level = |name: &str, divisor: u32| {
+            let size = (size.0.div_ceil(divisor), size.1.div_ceil(divisor));
+            Differential {
+                rv: Target::new_2d(device, &format!("specular/{name}_rv"), size, half, usage),
+                r: Target::new_2d(device, &format!("specular/{name}_r"), size, half, usage),
+            }
+        };
+        Self { levels: [level("caustics", divisor), level("caustics_coarse", divisor * COARSE_LEVEL_FACTOR)] }
     }
 }
 
@@ -299,5 +430,10 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "emit.wgsl",
 );
 /// The composed WGSL module of the splatting.
-pub const SPLAT_SHADER: &str =
-    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/sampling.wgsl", "photons.wgsl", "splat.wgsl",);
+pub const SPLAT_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/sampling.wgsl",
+    "photons.wgsl",
+    "levels.wgsl",
+    "splat.wgsl",
+);

@@ -20,7 +20,8 @@ struct CausticParams {
     info: vec4u,
     // bounding sphere of the traced instances: centre, radius
     casters: vec4f,
-    // splat half-size min, max (metres), depth epsilon, unused
+    // splat half-size min, max of the fine level, max of the coarse level (metres), depth
+    // epsilon
     splat: vec4f,
 }
 
@@ -35,6 +36,21 @@ struct Photon {
 
 // Per light and texel: the reflected and the refracted photon of L_rv, then those of L_r.
 const PHOTON_KINDS: u32 = 4u;
+
+// Photon slots of the group: sources × kinds × resolution².
+fn photon_slots() -> u32 {
+    return caustics.info.x * caustics.info.x * caustics.info.y * PHOTON_KINDS;
+}
+
+// One indirect draw per caustic level (wgpu's DrawIndirectArgs; the CPU resets it to
+// (0, 1, 0, 0) every frame): cs_size lists the landed photons of each level and counts six
+// vertices for each, so that the splat's vertex stage runs only for photons that landed.
+struct SplatDraw {
+    vertex_count: atomic<u32>,
+    instance_count: u32,
+    first_vertex: u32,
+    first_instance: u32,
+}
 
 fn photon_index(light: u32, kind: u32, texel: vec2u) -> u32 {
     let res = caustics.info.x;

@@ -6,12 +6,20 @@
 // the other (rgb: irradiance; a: photon count, for the thesis's k_c). A fragment counts only
 // where the camera's surface lies on the quad (§2.17.4's depth test, as a fraction of the
 // camera distance) and faces the same way.
+// Two levels (Wyman's hierarchical caustic maps, in two levels): photons at most `splat_max`
+// apart go to the fine buffer, those farther apart (a convex mirror's diverging reflection)
+// to a coarse one of 1/COARSE_LEVEL_FACTOR its resolution per axis, where a quad of their own
+// size costs few texels. Each level's draw runs over its list of landed photons only (the
+// vertex stage, not blending, bound the splat on the H200 while it ran over every slot).
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> caustics: CausticParams;
 @group(0) @binding(2) var<storage, read> photons: array<Photon>;
 @group(0) @binding(3) var gbuffer_depth_motion: texture_2d<f32>;
 @group(0) @binding(4) var gbuffer_normal_roughness: texture_2d<f32>;
+// cs_size's lists of the landed photons per level, and the level this draw splats (x).
+@group(0) @binding(5) var<storage, read> splat_list: array<u32>;
+@group(0) @binding(6) var<uniform> level: vec4u;
 
 struct Splat {
     @builtin(position) clip: vec4f,
@@ -19,19 +27,17 @@ struct Splat {
     @location(0) local: vec2f,
     @location(1) @interpolate(flat) photon: u32,
     @location(2) @interpolate(flat) half_size: f32,
+    // caustic-buffer divisor of the level drawn
+    @location(3) @interpolate(flat) divisor: u32,
 }
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32) -> Splat {
     var out: Splat;
     // Six vertices per photon (not instances of six: tiny instances starve the vertex stage).
-    let index = vertex / 6u;
+    let index = splat_list[level.x * photon_slots() + vertex / 6u];
     out.photon = index;
     let photon = photons[index];
-    if (photon.position.w == 0.0) {
-        out.clip = vec4f(2.0, 2.0, 2.0, 1.0);
-        return out;
-    }
     let h = photon.normal.w;
     // Two triangles: corners (−1,−1) (1,−1) (1,1), (−1,−1) (1,1) (−1,1).
     var corners = array<vec2f, 6>(
@@ -44,6 +50,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> Splat {
     out.clip = frame.clip_from_world * vec4f(world, 1.0);
     out.local = local;
     out.half_size = h;
+    out.divisor = caustics.info.w * select(1u, COARSE_LEVEL_FACTOR, level.x == 1u);
     return out;
 }
 
@@ -56,14 +63,14 @@ struct Targets {
 fn fs_main(in: Splat) -> Targets {
     let photon = photons[in.photon];
     // This caustic-buffer texel's centre on the full-size G-buffer.
-    let at = in.clip.xy * f32(caustics.info.w);
-    let pixel = vec2i(at);
+    let at = in.clip.xy * f32(in.divisor);
+    let pixel = min(vec2i(at), vec2i(frame.size.xy) - 1);
     let tb = tangent_frame(photon.normal.xyz);
     let world = photon.position.xyz + (tb[0] * in.local.x + tb[1] * in.local.y) * in.half_size;
     let surface = world_from_pixel(frame, at, textureLoad(gbuffer_depth_motion, pixel, 0).x);
     let to_camera = distance(surface, frame.camera_position.xyz);
     let n = textureLoad(gbuffer_normal_roughness, pixel, 0).xyz;
-    if (distance(world, surface) > caustics.splat.z * to_camera || dot(n, photon.normal.xyz) < 0.5) {
+    if (distance(world, surface) > caustics.splat.w * to_camera || dot(n, photon.normal.xyz) < 0.5) {
         discard;
     }
     let tent = (1.0 - abs(in.local.x)) * (1.0 - abs(in.local.y));

@@ -33,7 +33,8 @@ impl IndirectPass {
     /// GPU timing label.
     pub const LABEL: &'static str = "indirect";
 
-    /// Binds the G-buffer, VPLs and ISMs; writes `out`. With `probe_caustics` the probe's
+    /// Binds the G-buffer, VPLs and ISMs (VPLs lit closer than `d_min` metres light as if
+    /// from `d_min`); writes `out`. With `probe_caustics` the probe's
     /// light through transmissive casters is the specular stage's (photons), not the shadow's.
     #[allow(clippy::too_many_arguments, reason = "shading reads all of these")]
     pub fn new(
@@ -45,7 +46,7 @@ impl IndirectPass {
         ism: &IsmResources,
         settings: &DirSettings,
         probe_caustics: bool,
-        scene_radius: f32,
+        d_min: f32,
         previous_radiance: &Differential<Target>,
         out: &IndirectLight,
     ) -> Self {
@@ -58,7 +59,7 @@ impl IndirectPass {
                 settings.near_field_samples,
                 probe_caustics as u32,
             ),
-            values: Vec4::new(settings.clamp_distance * scene_radius, 0.0, 0.0, 0.0),
+            values: Vec4::new(d_min, 0.0, 0.0, 0.0),
         };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("indirect/params"),
@@ -160,6 +161,7 @@ pub const SHADER: &str = wgsl!(
     "../../../../shaders/lib/sampling.wgsl",
     "../../../../shaders/lib/vpl.wgsl",
     "../../../../shaders/lib/ism.wgsl",
+    "../../../../shaders/lib/vpl_light.wgsl",
     "indirect.wgsl",
     "nearfield.wgsl",
 );

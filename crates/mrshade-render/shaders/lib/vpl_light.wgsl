@@ -1,0 +1,124 @@
+// The light of the VPLs at one receiver, with the flag routing of Knecht §2.7 Eq. 5.6–5.8:
+//   L_rv += L_o · (1 − ir) · min(V_r, V_v)          (5.6, 5.8)
+//   L_r  += L_o · x̄ · r(p) · V_r                     (5.7, with the path flag of §2.8)
+// (plus the light of each VPL's co-located VPL3, see vpl.wgsl). Directional (environment)
+// VPLs are not added as light: their cosine-weighted visibilities per channel are summed
+// (Σw_c·V_rv, Σw_c·V_r, Σw_c), from which the caller scales the probe's exact image-based
+// light (env_visibility.wgsl). One function for the `dir` method's interleaved shading of
+// the screen and for the specular stage's shading of the surfaces that reflections and
+// refractions hit off screen.
+// Needs vpl.wgsl, ism.wgsl, brdf.wgsl, gbuffer.wgsl and the bindings `vpls`, `ism`,
+// `ism_real`, `ism_virtual`, `materials`.
+
+struct VplLight {
+    rv: vec3f,
+    r: vec3f,
+    env_rv: vec3f,
+    env_r: vec3f,
+    env_weight: vec3f,
+}
+
+// How the VPLs light one receiver: their lower bound of the VPL–receiver distance (m);
+// whether the probe's light through transmissive casters is carried by photons (the
+// specular stage's caustics) rather than let through by the shadow; whether the directional
+// VPLs' visibility sums are wanted.
+struct VplShading {
+    d_min: f32,
+    photons: bool,
+    directional: bool,
+}
+
+// Visibility of VPL `index` at receiver `p` (normal `n`) past the casters of one atlas: 0 or
+// 1, or the transmittance of a transmissive nearest caster.
+// Offsets and biases keep a surface from shadowing itself; they are needed only where the
+// receiver's own surface is in the atlas (a real receiver in the real atlas, a virtual one
+// in the virtual atlas). Elsewhere they would only grow the other atlas's shadows, most
+// visibly where a virtual object touches the real surface it stands on.
+fn ism_visible(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_atlas: bool, photons: bool) -> f32 {
+    let first = ism_project(v, p, ism, virtual_atlas);
+    let extent = ism_texel_extent(v, first.depth, ism, virtual_atlas);
+    // Depth bias against the quantisation of the other atlas's depths: half a texel for
+    // splatted maps; a tenth for the triangle-rasterised directional maps, whose texels hold
+    // exact depths at their centres. (Half a texel there is 1–2 cm under a room-sized proxy:
+    // the bottom of a virtual object standing on a real desk then saw the probe through the
+    // desk and glowed; desk-bunny region FLIP 0.071 → 0.069.)
+    var offset = 0.0;
+    var limit_bias = select(0.5, 0.1, vpl_kind(v) == VPL_DIRECTIONAL) * extent;
+    if (own_atlas) {
+        if (vpl_kind(v) == VPL_DIRECTIONAL) {
+            // Exact triangle maps: a texel-and-a-half of normal offset and half a texel of
+            // depth bias suffice; a bias relative to the map's sphere would erase the
+            // shadows of thin casters (a book on a desk) under a room-sized real proxy.
+            offset = 1.5 * extent;
+            limit_bias = 0.5 * extent;
+        } else {
+            // Lift the receiver off its own surface's splats: by a texel and by the splat size.
+            let splat = select(ism.splat.x, ism.splat.y, virtual_atlas) * ism.splat.w;
+            offset = max(extent, splat);
+            limit_bias = first.depth * ism.splat.z + extent;
+        }
+    }
+    let c = ism_project(v, p + n * offset, ism, virtual_atlas);
+    if (!c.valid) { return 1.0; }
+    let i = ism_texel_index(index, c.uv, ism);
+    let stored = select(ism_real[i], ism_virtual[i], virtual_atlas);
+    if (ism_decode(stored) >= c.depth - limit_bias) { return 1.0; }
+    // The probe's light through a transmissive caster: its photons carry it when they fly
+    // (RenderSettings::probe_caustics), else the shadow lets it through.
+    let carried = vpl_kind(v) == VPL_DIRECTIONAL && photons;
+    if (!ism_caster_known(stored) || carried) { return 0.0; }
+    return caster_transmittance(materials[ism_caster_material(stored)]);
+}
+
+// f_r · cos θ_l of the receiver toward a VPL. On a surface the specular stage traces (a mirror,
+// a glass, a smooth metal) the specular lobe is the stage's: its reflection of the surfaces
+// these VPLs light. Here, a near-delta GGX lobe turned each VPL into a firefly that the
+// interleaving spread into a block (desk-mirror's sphere), and counted that light twice.
+fn receiver_brdf_cos(s: Surface, l: vec3f, traced: bool) -> vec3f {
+    let lobes = brdf_lobes(s, l);
+    return select(lobes.diffuse + lobes.specular, lobes.diffuse, traced);
+}
+
+// (V_r, V_v) of VPL `index` at receiver `p` with normal `n`, on a real or virtual surface.
+fn ism_visibility(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool, photons: bool) -> vec2f {
+    return vec2f(
+        ism_visible(index, v, p, n, false, real, photons),
+        ism_visible(index, v, p, n, true, !real, photons),
+    );
+}
+
+// The VPLs `first`, `first + step`, … below `count` at surface `s` (r(p) = `r_p`; `traced`:
+// the specular stage reflects its specular lobe), unscaled.
+fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u32, how: VplShading) -> VplLight {
+    var out = VplLight(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
+    let receiver_real = r_p > 0.0;
+    let p = s.position;
+    let d_min2 = how.d_min * how.d_min;
+    for (var i = first; i < count; i += step) {
+        let v = vpls[i];
+        let kind = vpl_kind(v);
+        if (kind == VPL_SURFACE) {
+            let to = v.position.xyz - p;
+            let d2 = max(dot(to, to), 1e-12);
+            let l = to * inverseSqrt(d2);
+            if (dot(s.normal, l) <= 0.0) { continue; }
+            let emission = vpl_emission(v, -l);
+            if (all(emission == vec3f(0.0))) { continue; }
+            let transfer = receiver_brdf_cos(s, l, traced) * emission / max(d2, d_min2);
+            let l_o = transfer * v.power.rgb;
+            let vis = ism_visibility(i, v, p, s.normal, receiver_real, how.photons);
+            let route = vpl_routing(v.info.x, r_p, vis);
+            out.rv += l_o * route.x;
+            out.r += l_o * route.y + transfer * v.power_ir.rgb * route.z;
+        } else if (kind == VPL_DIRECTIONAL && how.directional) {
+            let cos_theta = dot(s.normal, -v.position.xyz);
+            if (cos_theta <= 0.0) { continue; }
+            let w = v.power.rgb * cos_theta;
+            let vis = ism_visibility(i, v, p, s.normal, receiver_real, how.photons);
+            out.env_rv += w * min(vis.x, vis.y);
+            out.env_r += w * vis.x;
+            out.env_weight += w;
+        }
+    }
+    return out;
+}
