@@ -3,6 +3,7 @@
 use crate::methods::AovView;
 use crate::renderer::Renderer;
 use crate::specular::caustics::LandedPhoton;
+use crate::uniforms::image_point;
 use anyhow::{Context, Result};
 use half::f16;
 use mrshade_core::flags::{SURFACE_COVERED, SURFACE_REAL};
@@ -199,13 +200,11 @@ impl Renderer {
         let (width, height) = self.internal_size();
         let mut image = HdrImage { width, height, pixels: vec![[0.0; 3]; (width * height) as usize] };
         for photon in self.read_photons(ctx)?.iter().filter(|p| p.kind < 2) {
-            let clip = self.uniforms.clip_from_world * photon.position.extend(1.0);
-            if clip.w <= 0.0 {
+            let Some(at) = image_point(self.uniforms.clip_from_world, photon.position, (width, height)) else {
                 continue;
-            }
-            let (x, y) = ((clip.x / clip.w * 0.5 + 0.5) * width as f32, (0.5 - clip.y / clip.w * 0.5) * height as f32);
-            if (0.0..width as f32).contains(&x) && (0.0..height as f32).contains(&y) {
-                let pixel = &mut image.pixels[y as usize * width as usize + x as usize];
+            };
+            if (0.0..width as f32).contains(&at.x) && (0.0..height as f32).contains(&at.y) {
+                let pixel = &mut image.pixels[at.y as usize * width as usize + at.x as usize];
                 *pixel = (glam::Vec3::from(*pixel) + photon.power).to_array();
             }
         }

@@ -1,7 +1,7 @@
 //! Per-frame constants (`Frame` in shaders/lib/frame.wgsl): the frame's camera, sizes, probe.
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, UVec4, Vec4};
+use glam::{Mat4, UVec4, Vec2, Vec3, Vec4};
 use mrshade_core::camera::CameraView;
 use mrshade_core::math::probe_from_world;
 use mrshade_scene::Session;
@@ -26,6 +26,17 @@ pub struct FrameUniforms {
     pub counts: UVec4,
     /// Exposure, probe intensity, camera near plane, frame index.
     pub exposure_env: Vec4,
+}
+
+/// Where world point `p` falls in an image of `size` seen through `clip_from_world`, in
+/// pixels (x right, y down, fractional; possibly outside the image), or `None` behind the
+/// camera. The CPU's twin of the shaders' projection, for AOVs drawn over the image.
+pub fn image_point(clip_from_world: Mat4, p: Vec3, size: (u32, u32)) -> Option<Vec2> {
+    let clip = clip_from_world * p.extend(1.0);
+    (clip.w > 0.0).then(|| {
+        let ndc = clip.truncate().truncate() / clip.w;
+        Vec2::new((ndc.x * 0.5 + 0.5) * size.0 as f32, (0.5 - ndc.y * 0.5) * size.1 as f32)
+    })
 }
 
 impl FrameUniforms {

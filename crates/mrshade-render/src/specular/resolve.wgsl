@@ -246,6 +246,14 @@ fn caustic_texel(t: texture_2d<f32>, pixel: vec2i, divisor: u32) -> vec4f {
     return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
 }
 
+// One differential half's caustic irradiance at full-size `pixel`: its fine and its coarse
+// level summed.
+fn caustic_levels(fine: texture_2d<f32>, coarse: texture_2d<f32>, pixel: vec2i) -> vec3f {
+    let divisor = params.info.w;
+    return caustic_irradiance(caustic_texel(fine, pixel, divisor))
+        + caustic_irradiance(caustic_texel(coarse, pixel, divisor * COARSE_LEVEL_FACTOR));
+}
+
 // The caustics on the diffuse surface at `pixel`, in camera values (spec §2.17.4–§2.17.5,
 // Eq. T5.4–T5.6): the caustic buffer's irradiance through the surface's diffuse BRDF, all
 // of the L_rv photons' on a virtual pixel, on a real one their difference from the L_r
@@ -255,14 +263,8 @@ fn caustic_light(pixel: vec2i, flags: u32) -> vec3f {
     let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
     let m = materials[material_of(flags)];
     let diffuse = am.rgb * (1.0 - am.a) * (1.0 - m.transmission.x) / PI;
-    let fine = params.info.w;
-    let coarse = fine * COARSE_LEVEL_FACTOR;
-    var e = caustic_irradiance(caustic_texel(caustics_rv, pixel, fine))
-        + caustic_irradiance(caustic_texel(caustics_coarse_rv, pixel, coarse));
-    if (is_real(flags)) {
-        e -= caustic_irradiance(caustic_texel(caustics_r, pixel, fine))
-            + caustic_irradiance(caustic_texel(caustics_coarse_r, pixel, coarse));
-    }
+    var e = caustic_levels(caustics_rv, caustics_coarse_rv, pixel);
+    if (is_real(flags)) { e -= caustic_levels(caustics_r, caustics_coarse_r, pixel); }
     return frame.exposure_env.x * diffuse * e;
 }
 

@@ -189,8 +189,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let ior = max(m.transmission.y, 1.0);
     var exit: Exit;
     if (interiors[owner].info.x != NO_VIEW && owners[owner].info.w == 1u) {
-        let seed = hash_u32(id.y * frame.size.x + id.x) ^ hash_u32(u32(frame.exposure_env.w) + 0x9e3779b9u);
-        exit = traced_exit(owner, p1, view_dir, n, ior, seed);
+        exit = traced_exit(owner, p1, view_dir, n, ior, id.y * frame.size.x + id.x);
     } else {
         exit = refraction_exit(pixel, p1, view_dir, n, ior, owners[owner].info.z);
     }

@@ -228,11 +228,13 @@ const MAX_INTERNAL: u32 = 8u;
 
 // The refracted view ray followed exactly through the instance's inside: at each internal
 // hit it leaves, or is reflected on inside: always when totally reflected, else with
-// probability F when internal reflections are sampled (params.more.z; `seed` makes the
-// choices), F being Schlick's from the outside angle (the larger one, for light leaving the
-// denser medium). Dropped, the leaving ray is weighted by 1 − F and the share F is lost.
-fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32, seed: u32) -> Exit {
+// probability F when internal reflections are sampled (params.more.z; the choices are drawn
+// from `key`, the pixel's or photon's index, and the frame), F being Schlick's from the
+// outside angle (the larger one, for light leaving the denser medium). Dropped, the leaving
+// ray is weighted by 1 − F and the share F is lost.
+fn traced_exit(owner: u32, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32, key: u32) -> Exit {
     let eps = 1e-5 * max(1.0, length(p1));
+    let seed = hash_u32(key) ^ hash_u32(u32(frame.exposure_env.w) + 0x9e3779b9u);
     let sampled = params.more.z == 1u;
     var d = normalize(refract(view_dir, n1, 1.0 / ior));
     var o = p1;

@@ -5,6 +5,7 @@ use super::DirMethod;
 use super::vpl::{GpuVpl, flags, kind};
 use crate::methods::AovView;
 use crate::outputs::{Aov, AovImage, read_rgba16f};
+use crate::uniforms::image_point;
 use anyhow::Result;
 use mrshade_core::{Differential, HdrImage};
 use mrshade_gpu::{GpuContext, Target, readback};
@@ -109,12 +110,10 @@ fn vpl_overlay(vpls: &[GpuVpl], image: &HdrImage, clip_from_world: glam::Mat4) -
     let mut rgb = image.to_srgb8();
     let (w, h) = (image.width as i32, image.height as i32);
     for v in vpls.iter().filter(|v| v.info.z == kind::SURFACE) {
-        let clip = clip_from_world * v.position.truncate().extend(1.0);
-        if clip.w <= 0.0 {
+        let Some(at) = image_point(clip_from_world, v.position.truncate(), (image.width, image.height)) else {
             continue;
-        }
-        let x = ((clip.x / clip.w * 0.5 + 0.5) * w as f32) as i32;
-        let y = ((0.5 - clip.y / clip.w * 0.5) * h as f32) as i32;
+        };
+        let (x, y) = (at.x as i32, at.y as i32);
         let f = v.info.x;
         let color = if f & flags::IR != 0 {
             [255, 40, 40]

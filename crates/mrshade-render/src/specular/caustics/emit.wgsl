@@ -174,8 +174,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let transmission = m.transmission.x * (1.0 - metallic);
     if (transmission <= 0.0) { return; }
     let ior = max(m.transmission.y, 1.0);
-    let seed = hash_u32(photon_index(id.z, 1u, id.xy)) ^ hash_u32(u32(frame.exposure_env.w) + 0x9e3779b9u);
-    let exit = traced_exit(h.instance, h.position, e.dir, n, ior, seed);
+    let exit = traced_exit(h.instance, h.position, e.dir, n, ior, photon_index(id.z, 1u, id.xy));
     let through = power * transmission * (1.0 - fresnel_ior(ior, cos_i)) * exit_transmittance(m, m.base_color.rgb, exit, ior);
     photons[photon_index(id.z, 1u, id.xy)] = land(exit.position, exit.dir, h.instance, false, true, through * rv);
     if (all_real) {
