@@ -186,5 +186,7 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("backprojection_epsilon"));
         let err = toml::from_str::<SpecularSettings>("refraction_policy = \"c\"").unwrap_err();
         assert!(err.to_string().contains("keep-refraction"), "{err}");
+        let err = toml::from_str::<SpecularSettings>("internal_reflections = \"kept\"").unwrap_err();
+        assert!(err.to_string().contains("sampled") && err.to_string().contains("dropped"), "{err}");
     }
 }
