@@ -91,6 +91,66 @@ fn check_sphere_shadow(radius: f32, height: f32, plus_x: [f32; 3]) {
     assert!(worst < 0.06, "worst error {worst}");
 }
 
+/// A virtual chrome ball (F0 = 0.9) resting on a real plane (albedo ρ = 0.5) under a white
+/// probe hides the same sky as a black ball, but shows the plane, where it hides the sky, half
+/// of the plane's surroundings mirrored (vpl_light.wgsl): with every other path off (no bounce
+/// VPLs, no near field, no photons), L_rv(chrome) − L_rv(black) = ρ · F0 · ½ · FF · L_rv(chrome),
+/// FF the point-to-sphere form factor. Without the term the two balls' shadows are the same.
+#[test]
+fn a_virtual_mirror_shows_the_plane_its_surroundings_where_it_hides_the_sky() {
+    let (radius, height, rho, f0) = (0.08f32, 0.08f32, 0.5f32, 0.9f32);
+    let render = |chrome: bool| {
+        let mut s = Setup::top_down(32);
+        s.probe = Some([1.0, 1.0, 1.0]);
+        s.top_toml = "method = \"dir\"\n".into();
+        s.extra_toml = format!(
+            "[output]\nframes = 24\n{}[dir]\ninterleave = 1\nnear_field_samples = 0\nbounce = \"off\"\n\
+             distribution = \"weighted\"\nweights = {{ environment_bounce = 0.0 }}\n[caustics]\nenabled = false\n",
+            s.extra_toml
+        );
+        s.plane(2.0, 0.0, rho, true);
+        let sphere = mrshade_testkit::gltf::sphere(radius, 48);
+        let material = if chrome {
+            json!({"name": "chrome", "pbrMetallicRoughness": {"baseColorFactor": [f0, f0, f0, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0}})
+        } else {
+            mrshade_testkit::gltf::lambert("black", [0.0; 3])
+        };
+        let m = s.gltf.material(material);
+        let mesh = s.gltf.mesh(&sphere, Some(m), true);
+        s.gltf
+            .node(json!({"name": "ball", "mesh": mesh, "translation": [0.15, height, 0.0], "extras": {"real": false}}));
+        let (_dir, session) = s.session();
+        Rendered::new(session)
+    };
+    let (chrome, black) = (render(true), render(false));
+    let centre = Vec3::new(0.15, height, 0.0);
+    let (mut checked, mut worst, mut largest) = (0, 0.0f32, 0.0f32);
+    for y in 0..32 {
+        for x in 0..32 {
+            let p = chrome.world_on_plane(x, y, 0.0);
+            if common::segment_hits_box(Vec3::new(0.0, 1.0, 0.0), p, centre, radius * 1.05) {
+                continue;
+            }
+            let to = centre - p;
+            let d = to.length();
+            let form_factor = (to.y / d) * (radius / d).powi(2);
+            if form_factor < 0.05 {
+                continue;
+            }
+            let (lit, dark) = (chrome.l_rv(x, y), black.l_rv(x, y));
+            let got = (lit.y - dark.y) / lit.y;
+            let expected = rho * f0 * 0.5 * form_factor;
+            eprintln!("({x},{y}) FF {form_factor:.3}: expected {expected:.4} got {got:.4}");
+            worst = worst.max((got - expected).abs());
+            largest = largest.max(expected);
+            checked += 1;
+        }
+    }
+    eprintln!("worst error {worst:.4} over {checked} points, largest expected {largest:.3}");
+    assert!(checked >= 8 && largest > 0.03, "only {checked} points, largest expected {largest}");
+    assert!(worst < 0.25 * largest, "worst error {worst} against a largest effect of {largest}");
+}
+
 /// One bounce from a spot light: a floor lit from straight above reflects onto a wall.
 /// The wall's indirect radiance is ρ_w/π ∫ L_floor cos θ_w cos θ_f / r² dA over the lit floor,
 /// with L_floor = ρ_f/π · I cos³θ / h² (inverse square and cosine).

@@ -52,6 +52,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("specular.max_roughness", Kind::Number),
     ("specular.backprojection_epsilon", Kind::Number),
     ("specular.refraction", Kind::Choice(&["traced", "two-interfaces", "wyman"])),
+    ("specular.probe_lobe", Kind::Number),
     ("specular.internal_reflections", Kind::Choice(&["sampled", "dropped", "kept"])),
     ("specular.refraction_policy", Kind::Choice(&["keep-refraction", "rendered"])),
     ("caustics.enabled", Kind::Bool),

@@ -19,7 +19,8 @@ struct Vpl {
     // xyz: world position (surface) or unit direction of propagation (directional);
     // w: the surface area (m²) a surface VPL stands for (its share of the sampled surfaces)
     position: vec4f,
-    // xyz: surface normal (on the lit side); w: roughness
+    // xyz: surface normal (on the lit side); w: roughness. Directional: x the solid angle
+    // (sr) the VPL stands for.
     normal: vec4f,
     // rgb: incident power Φ_in, W (surface) or irradiance E, W/m² (directional); w: metallic
     power: vec4f,

@@ -259,7 +259,7 @@ impl SpecularStage {
                 settings.backprojection_epsilon,
                 inputs.settings.caustics.thesis_base,
                 inputs.point_light.as_ref().map_or(0.0, |p| p.d_min),
-                0.0,
+                settings.probe_lobe,
             ),
             more: UVec4::new(
                 inputs.point_light.as_ref().map_or(0, |p| p.count),

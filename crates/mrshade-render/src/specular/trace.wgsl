@@ -78,14 +78,16 @@ fn store_nothing(pixel: vec2i) {
 }
 
 
-// A glossy ray that leaves the scene sees the probe prefiltered for the lobe, looked up along
-// the mirror direction (split sum) rather than along the one sampled direction, which would
-// make the probe's sun a firefly.
-fn glossy_miss(end: RayEnd, mirror: vec3f, roughness: f32) -> RayEnd {
+// A glossy ray that leaves the scene sees the probe along its own sampled direction, prefiltered
+// over a lobe narrower than the surface's (roughness × specular.probe_lobe, params.tolerances.w):
+// the samples of successive frames spread it over the surface's lobe, and the probe's sun is
+// less of a firefly in any one of them. (The split sum's lookup along the mirror direction,
+// prefiltered with n = v = r, put a rough metal's highlights where a mirror has them and
+// widened them at grazing angles: desk-mirror's torus.)
+fn glossy_miss(end: RayEnd, roughness: f32) -> RayEnd {
     var out = end;
     if (end.triangle == 0u && roughness * roughness >= 1e-3) {
-        out.dir = mirror;
-        out.roughness = roughness;
+        out.roughness = roughness * params.tolerances.w;
     }
     return out;
 }
@@ -162,22 +164,21 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     );
     let occlusion = textureLoad(gbuffer_emission_occlusion, pixel, 0).a;
     let view_dir = -s.view;
-    let n = microfacet_normal(s.normal, s.roughness, hash_u32(id.x * 73856093u ^ id.y * 19349663u ^ u32(frame.exposure_env.w) * 83492791u));
+    let n = microfacet_normal(s.normal, s.view, s.roughness, hash_u32(id.x * 73856093u ^ id.y * 19349663u ^ u32(frame.exposure_env.w) * 83492791u));
     // Reflection (spec §2.11): r = 2(n·v)n − v, weighted by the split-sum albedo of the lobe.
     let ab = env_dfg(max(dot(s.normal, s.view), 1e-4), s.roughness);
     let specular_albedo = surface_f0(s) * ab.x + surface_f90(s) * ab.y;
     var reflected = reflect(view_dir, n);
     if (dot(reflected, s.normal) <= 0.0) { reflected = reflect(view_dir, s.normal); }
     let real_pixel = is_real(flags);
-    let mirror = reflect(view_dir, s.normal);
     // A dielectric reflects a few percent: its self-reflections are not worth a BVH traversal.
     let transmission = m.transmission.x * (1.0 - s.metallic);
     let sees_self = transmission <= 0.0;
-    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self), mirror, s.roughness);
+    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self), s.roughness);
     reflection.weight *= specular_albedo * occlusion;
     store_branch(pixel, false, reflection);
     if (real_pixel) {
-        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self), mirror, s.roughness);
+        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self), s.roughness);
         textureStore(out_reflection_real_hit, pixel, hit_texel(real_end));
     }
 

@@ -212,15 +212,33 @@ struct Exit {
 }
 
 // A GGX microfacet normal around `n` for roughness `roughness` (the normal itself when
-// smooth), drawn from the distribution of normals by the random bits of `seed`.
-fn microfacet_normal(n: vec3f, roughness: f32, seed: u32) -> vec3f {
+// smooth), drawn from the normals visible from direction `v` (away from the surface: toward
+// the eye, or back toward a photon's source) by the random bits of `seed` (Heitz 2018,
+// "Sampling the GGX Distribution of Visible Normals"). Reflected about it, `v` follows the
+// BRDF's lobe up to F·G1(l) (which varies little), off-specular peak and grazing stretch
+// included; sampling D(h)·cos θ_h instead, weighted by the lobe's mean albedo, bent a rough
+// metal's highlights toward the mirror direction and widened them at grazing angles.
+fn microfacet_normal(n: vec3f, v: vec3f, roughness: f32, seed: u32) -> vec3f {
     let alpha = roughness * roughness;
     if (alpha < 1e-3) { return n; }
     let u = vec2f(f32(seed & 0xffffu) / 65536.0, f32(seed >> 16u) / 65536.0);
-    let cos_theta = sqrt((1.0 - u.x) / (1.0 + (alpha * alpha - 1.0) * u.x));
-    let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    let tb = tangent_frame(n);
+    let v_local = vec3f(dot(v, tb[0]), dot(v, tb[1]), max(dot(v, n), 1e-4));
+    // The view direction in the hemisphere configuration (the lobe stretched to α = 1).
+    let vh = normalize(vec3f(alpha * v_local.x, alpha * v_local.y, v_local.z));
+    let len2 = dot(vh.xy, vh.xy);
+    let t1 = select(vec3f(1.0, 0.0, 0.0), vec3f(-vh.y, vh.x, 0.0) * inverseSqrt(len2), len2 > 1e-12);
+    let t2 = cross(vh, t1);
+    // A point of the unit disc, its lower half squeezed to the part of the projected
+    // hemisphere that `v` sees.
+    let r = sqrt(u.x);
     let phi = 2.0 * PI * u.y;
-    return normalize(to_world(vec3f(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta), n));
+    let d1 = r * cos(phi);
+    let s = 0.5 * (1.0 + vh.z);
+    let d2 = (1.0 - s) * sqrt(max(1.0 - d1 * d1, 0.0)) + s * r * sin(phi);
+    let nh = d1 * t1 + d2 * t2 + sqrt(max(1.0 - d1 * d1 - d2 * d2, 0.0)) * vh;
+    let m = normalize(vec3f(alpha * nh.x, alpha * nh.y, max(nh.z, 1e-6)));
+    return normalize(tb[0] * m.x + tb[1] * m.y + n * m.z);
 }
 
 // Internal events a traced refraction follows before it gives up and leaves by the tangent.

@@ -156,20 +156,15 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     // metal's caustic of a lamp is a glow, not a mirror's sharp image.
     let roughness = clamp(m.params.y, 0.0, 1.0);
     let lobe_seed = hash_u32(photon_index(id.z, 0u, id.xy) * 2654435761u ^ u32(frame.exposure_env.w) * 83492791u);
-    var reflected = reflect(e.dir, microfacet_normal(n, roughness, lobe_seed));
+    var reflected = reflect(e.dir, microfacet_normal(n, -e.dir, roughness, lobe_seed));
     if (dot(reflected, n) <= 0.0) { reflected = reflect(e.dir, n); }
     let concave = interiors[h.instance].info.y == 1u;
     let rv = min(v_r, v_v);
-    // The probe's light reflected by a traced surface is the method's: `dir`'s VPLs on that
-    // surface bounce it (its directional VPLs see mirrors as opaque casters and light them),
-    // so the probe's photons carry only what passes through glass, which no VPL carries.
-    // Reflected probe photons counted that light twice (desk-mirror region FLIP 0.109 with
-    // caustics off, 0.112 on).
-    if (!from_probe) {
-        photons[photon_index(id.z, 0u, id.xy)] = land(h.position, reflected, h.instance, false, concave, power * reflectance * rv);
-        if (all_real) {
-            photons[photon_index(id.z, 2u, id.xy)] = land(h.position, reflected, h.instance, true, concave, power * reflectance * v_r);
-        }
+    // The probe's light reflected by a traced surface lands as photons too; `dir`'s
+    // environment-bounce VPLs leave traced surfaces out (bounce.wgsl), so it is counted once.
+    photons[photon_index(id.z, 0u, id.xy)] = land(h.position, reflected, h.instance, false, concave, power * reflectance * rv);
+    if (all_real) {
+        photons[photon_index(id.z, 2u, id.xy)] = land(h.position, reflected, h.instance, true, concave, power * reflectance * v_r);
     }
     let transmission = m.transmission.x * (1.0 - metallic);
     if (transmission <= 0.0) { return; }

@@ -79,7 +79,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let light = vpl_light(s, traced, r_p, subset, step, params.info.y, how);
     let scale = f32(step);
     let near = near_field(pixel, s, traced, r_p, params.values.x, params.info.z, frame_index);
-    textureStore(out_rv, pixel, vec4f(light.rv * scale + near.rv, 1.0));
+    // Surroundings mirrored by virtual metals (vpl_light.wgsl): p's own radiance of the previous
+    // frame stands for theirs.
+    let mirrored = light.mirrored * scale * textureLoad(previous_l_rv, pixel, 0).rgb;
+    textureStore(out_rv, pixel, vec4f(light.rv * scale + near.rv + mirrored, 1.0));
     textureStore(out_r, pixel, vec4f(light.r * scale + near.r, 1.0));
     textureStore(out_env_rv, pixel, vec4f(light.env_rv, 1.0));
     textureStore(out_env_r, pixel, vec4f(light.env_r, 1.0));

@@ -8,7 +8,8 @@
 // this also carries further near-field bounces). Both buffers from the same samples:
 // L_rv from every neighbour, L_r from real neighbours onto real receivers only (Eq. 5.7's
 // path rule; the real surface a virtual neighbour hides is unknown and adds nothing).
-// Neighbours the specular stage traces (mirror-like, transmissive) send nothing here.
+// Neighbours the specular stage traces send what they reflect of p's surroundings (metals)
+// or nothing (glass; see below).
 // Expects the indirect module's bindings (frame, G-buffer, previous_l_rv/_r).
 
 struct NearField {
@@ -46,11 +47,6 @@ fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, samp
         if (any(q < vec2i(0)) || any(q >= size) || all(q == pixel)) { continue; }
         let flags = textureLoad(gbuffer_flags, q, 0).r;
         if (!is_covered(flags)) { continue; }
-        // A mirror's or a glass's radiance toward the camera is the scene it reflects or lets
-        // through, nothing like what it sends to p: such a neighbour glowed like a lamp onto
-        // the desk a glass object stands on. Its light reaches p as a caustic, or through the
-        // transmittance of its shadow (caster_transmittance), not here.
-        if (is_traced(materials[material_of(flags)])) { continue; }
         let x_q = world_from_pixel(frame, vec2f(q) + 0.5, textureLoad(gbuffer_depth_motion, q, 0).x);
         let to = x_q - s.position;
         let d2 = dot(to, to);
@@ -59,6 +55,25 @@ fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, samp
         let n_q = normalize(textureLoad(gbuffer_normal_roughness, q, 0).xyz);
         let cos_q = -dot(n_q, l);
         if (cos_q <= 0.0 || dot(s.normal, l) <= 0.0) { continue; }
+        // A mirror's or a glass's radiance toward the camera is the scene it reflects or lets
+        // through, nothing like what it sends to p: such a neighbour glowed like a lamp onto
+        // the desk a glass object stands on. What a traced metal sends to p is what it
+        // reflects: from below p's horizon, p's own surroundings (a desk under a mirror ball
+        // sees the desk in it; their radiance taken as p's own of the previous frame), else
+        // the sky, which the probe's photons carry. A glass's light reaches p as a caustic.
+        var radiance_rv: vec3f;
+        var radiance_r = vec3f(0.0);
+        if (is_traced(materials[material_of(flags)])) {
+            let albedo_metallic = textureLoad(gbuffer_albedo_metallic, q, 0);
+            let source = reflect(l, n_q);
+            if (albedo_metallic.a < 0.5 || dot(source, s.normal) >= 0.0) { continue; }
+            let reflectance = schlick(albedo_metallic.rgb, 1.0, cos_q);
+            radiance_rv = reflectance * textureLoad(previous_l_rv, pixel, 0).rgb;
+            if (is_real(flags)) { radiance_r = reflectance * textureLoad(previous_l_r, pixel, 0).rgb; }
+        } else {
+            radiance_rv = textureLoad(previous_l_rv, q, 0).rgb;
+            if (is_real(flags)) { radiance_r = textureLoad(previous_l_r, q, 0).rgb; }
+        }
         // World area of pixel q: its footprint at its distance, spread by its obliquity.
         let t_q = distance(x_q, frame.camera_position.xyz);
         let view_cos = max(abs(dot(n_q, normalize(frame.camera_position.xyz - x_q))), 0.2);
@@ -66,10 +81,8 @@ fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, samp
         // 1/d² of a disc of the pixel's area (bounded), minus what the clamped VPLs gave.
         let kernel = max(1.0 / (d2 + pixel_area / PI) - inv_d_min2, 0.0);
         let transfer = receiver_brdf_cos(s, l, traced) * cos_q * pixel_area * pixels_per_sample * kernel;
-        out.rv += transfer * textureLoad(previous_l_rv, q, 0).rgb;
-        if (is_real(flags)) {
-            out.r += transfer * textureLoad(previous_l_r, q, 0).rgb * r_p;
-        }
+        out.rv += transfer * radiance_rv;
+        out.r += transfer * radiance_r * r_p;
     }
     return out;
 }

@@ -327,6 +327,12 @@ fn environment_bounce(slot: u32, b: BounceSlot, lane: u32) -> Vpl {
     if (sample.area <= 0.0) { return empty_vpl(); }
     let p = world_point(sample.point);
     let m = materials[p.material];
+    // The probe's light off a mirror, a glass or a smooth metal is a caustic: the specular
+    // stage's photons carry it, sharp and undiminished where the object touches the desk.
+    // As a VPL it was spread over a roughened lobe around the normal (VPL_MIN_ROUGHNESS) and
+    // clamped at d_min: the desk under desk-mirror's sphere and around its torus stayed 6/255
+    // too dark within 10 pixels of them.
+    if (params.strata.y == 1u && is_traced(m)) { return empty_vpl(); }
     let carry = b.carry.rgb * sample.area;
     // A single-sided surface is lit on its front; a double-sided one on its brighter side.
     var n = p.normal;

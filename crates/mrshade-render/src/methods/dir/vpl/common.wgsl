@@ -16,7 +16,8 @@ struct VplParams {
     modes: vec4u,
     // cos(bounce cone), total real surface area, total virtual surface area, unused
     bounce: vec4f,
-    // virtual bounding spheres, unused…
+    // virtual bounding spheres, 1 if the probe's light reflected by traced surfaces flies as
+    // the specular stage's photons (RenderSettings::probe_caustics), unused…
     strata: vec4u,
     world_from_probe: mat4x4f,
 }

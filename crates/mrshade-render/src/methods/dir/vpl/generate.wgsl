@@ -201,6 +201,9 @@ fn environment_vpl(source: u32, seq: u32, count: u32) -> Vpl {
     var v: Vpl;
     // Light arrives from `world_dir` and travels along −world_dir.
     v.position = vec4f(-world_dir, 0.0);
+    // The solid angle this VPL stands for (its normal is unused): what a virtual mirror
+    // hides of the sky (vpl_light.wgsl).
+    v.normal = vec4f(solid_angle / (pdf_texel * f32(count)), 0.0, 0.0, 0.0);
     v.power = vec4f(radiance * solid_angle / (pdf_texel * f32(count)), 0.0);
     v.info = vec4u(VPL_REAL | VPL_PATH_REAL, source, VPL_DIRECTIONAL, 0u);
     return v;

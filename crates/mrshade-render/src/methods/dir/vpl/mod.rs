@@ -201,7 +201,7 @@ impl VplPass {
                 ism.virtual_count,
             ),
             bounce: Vec4::new(settings.bounce_cone_deg.to_radians().cos(), ism.areas.0, ism.areas.1, 0.0),
-            strata: UVec4::ZERO,
+            strata: UVec4::new(0, session.settings.probe_caustics() as u32, 0, 0),
             world_from_probe,
         };
         let init = |label: &str, contents: &[u8], usage| {
