@@ -197,7 +197,11 @@ const BALL_CENTRE: Vec3 = Vec3::new(0.0, 0.25, 0.0);
 fn ball_caustic(light_real: bool, ball_real: bool, blocker: bool) -> (common::Rendered, Vec<f32>) {
     let render = |caustics: bool| {
         let mut s = Setup::top_down(BALL);
-        s.extra_toml += &format!("[caustics]\nenabled = {caustics}\nphoton_resolution = 64\n");
+        // Additive: the uniform gray photo does not show the real lamp's light or caustic,
+        // and α (photo over the real light, caustic included) would make every removal of
+        // the real caustic the photo's whole value.
+        s.extra_toml +=
+            &format!("[caustics]\nenabled = {caustics}\nphoton_resolution = 64\n[composite]\nmode = \"additive\"\n");
         s.plane(2.0, 0.0, 0.5, true).light(
             json!({"type": "point", "intensity": 2.0}),
             BALL_LIGHT.to_array(),

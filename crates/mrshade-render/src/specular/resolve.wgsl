@@ -257,15 +257,18 @@ fn caustic_levels(fine: texture_2d<f32>, coarse: texture_2d<f32>, pixel: vec2i) 
 // The caustics on the diffuse surface at `pixel`, in camera values (spec §2.17.4–§2.17.5,
 // Eq. T5.4–T5.6): the caustic buffer's irradiance through the surface's diffuse BRDF, all
 // of the L_rv photons' on a virtual pixel, on a real one their difference from the L_r
-// photons' (the photo already shows the real caustics).
-fn caustic_light(pixel: vec2i, flags: u32) -> vec3f {
-    if (!is_covered(flags)) { return vec3f(0.0); }
+// photons' (the photo already shows the real caustics); in a, minus the luminance of the L_r
+// photons' light (the composite's α compares the photo with all the real light it shows).
+fn caustic_light(pixel: vec2i, flags: u32) -> vec4f {
+    if (!is_covered(flags)) { return vec4f(0.0); }
     let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
     let m = materials[material_of(flags)];
     let diffuse = am.rgb * (1.0 - am.a) * (1.0 - m.transmission.x) / PI;
-    var e = caustic_levels(caustics_rv, caustics_coarse_rv, pixel);
-    if (is_real(flags)) { e -= caustic_levels(caustics_r, caustics_coarse_r, pixel); }
-    return frame.exposure_env.x * diffuse * e;
+    let to_camera = frame.exposure_env.x * diffuse;
+    let e_rv = caustic_levels(caustics_rv, caustics_coarse_rv, pixel);
+    var e_r = vec3f(0.0);
+    if (is_real(flags)) { e_r = caustic_levels(caustics_r, caustics_coarse_r, pixel); }
+    return vec4f(to_camera * (e_rv - e_r), -luminance(to_camera * e_r));
 }
 
 @compute @workgroup_size(8, 8)
@@ -277,7 +280,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let w_refraction = textureLoad(refraction_weight, pixel, 0);
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     if (w_reflection.a == 0.0 && w_refraction.a == 0.0) {
-        textureStore(out_specular, pixel, vec4f(caustic_light(pixel, flags), 0.0));
+        textureStore(out_specular, pixel, caustic_light(pixel, flags));
         return;
     }
     let real_pixel = is_real(flags);

@@ -18,8 +18,9 @@
 @group(0) @binding(6) var out_composite: texture_storage_2d<rgba32float, write>;
 // rgb: mean α of the real samples
 @group(0) @binding(7) var out_alpha: texture_storage_2d<rgba16float, write>;
-// The specular stage's light on traced pixels, in camera values: the whole traced part on
-// virtual pixels, its difference on real ones (zero where nothing is traced).
+// The specular stage's light, in camera values: on traced pixels (a = 1) the whole traced
+// part on virtual pixels, its difference on real ones; on diffuse pixels (a ≤ 0) the
+// caustics, their difference on real ones, and in −a the luminance of the real caustic.
 @group(0) @binding(8) var specular_texture: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
@@ -39,14 +40,29 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             let q = pixel * s + vec2i(sx, sy);
             let flags = textureLoad(flags_texture, q, 0).r;
             let l_rv = textureLoad(l_rv_texture, q, 0).rgb;
-            let specular = textureLoad(specular_texture, q, 0).rgb;
+            let specular = textureLoad(specular_texture, q, 0);
             if (is_covered(flags) && !is_real(flags)) {
-                virtual_sum += exposure * l_rv + specular;
+                virtual_sum += exposure * l_rv + specular.rgb;
                 virtual_count += 1.0;
             } else {
                 let l_r = textureLoad(l_r_texture, q, 0).rgb;
-                let a = alpha_of(params, photo, exposure * l_r);
-                real_delta += a * exposure * (l_rv - l_r) + specular;
+                // A caustic on a real diffuse surface is part of its differential light: α
+                // scales it like the rest, so that it takes the photo's texture (the proxy's
+                // flat albedo gave it none; desk-glass region FLIP 0.109 → 0.103), and α
+                // compares the photo with all the real light, the real caustic's included
+                // (else a real caustic that virtual content blocks is taken off the photo
+                // times the photo's caustic over L_r's lack of it). A real mirror's or glass's
+                // traced difference is not α's: its L_r holds no reflection.
+                let traced = specular.a > 0.5;
+                let caustic = select(specular.rgb, vec3f(0.0), traced);
+                let exposed_l_r = exposure * l_r;
+                let real_caustic = select(-specular.a, 0.0, traced);
+                // The real caustic's color is unknown here: L_r's (gray on an unlit surface).
+                let lit = luminance(exposed_l_r) > 1e-6;
+                let tint = select(vec3f(1.0), exposed_l_r / max(luminance(exposed_l_r), 1e-6), lit);
+                let real_light = exposed_l_r + real_caustic * tint;
+                let a = alpha_of(params, photo, real_light);
+                real_delta += a * (exposure * (l_rv - l_r) + caustic) + (specular.rgb - caustic);
                 alpha_sum += a;
                 real_count += 1.0;
             }
