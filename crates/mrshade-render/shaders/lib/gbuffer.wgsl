@@ -44,6 +44,10 @@ fn vpl_base_color(m: Material, base: vec3f, metallic: f32) -> vec3f {
 // (KHR_materials_volume). Light that glass refracts is not moved (punctual lights' caustics
 // do that), only not lost: under a probe, whose light comes from every direction, a glass
 // object's shadow is faint (the desk-glass answer), where an opaque caster's was dark.
+// Normal-incidence reflectance of material `m` (its metallic blend of the dielectric's F0 and
+// the base color), for code that has the material and no Surface (surface_f0).
+fn material_f0(m: Material) -> vec3f { return mix(m.dielectric.rgb, m.base_color.rgb, m.params.x); }
+
 fn caster_transmittance(m: Material) -> f32 {
     let t = m.transmission.x;
     if (t <= 0.0) { return 0.0; }

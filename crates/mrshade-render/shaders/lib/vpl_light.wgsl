@@ -149,7 +149,7 @@ fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u
             if (virtual_caster.caster != 0u && v_r > 0.0) {
                 let m = materials[virtual_caster.caster - 1u];
                 if (is_traced(m) && m.transmission.x <= 0.0) {
-                    let f0 = mix(m.dielectric.rgb, m.base_color.rgb, m.params.x);
+                    let f0 = material_f0(m);
                     let l = -v.position.xyz;
                     out.mirrored += receiver_brdf_cos(s, l, traced) * f0 * (MIRRORED_SURROUNDINGS * v.normal.x * v_r * (1.0 - virtual_caster.visible));
                 }

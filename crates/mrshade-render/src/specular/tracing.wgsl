@@ -189,7 +189,7 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_
                 end.weight *= f;
             }
         } else {
-            let f0 = mix(m.dielectric.rgb, m.base_color.rgb, m.params.x);
+            let f0 = material_f0(m);
             end.weight *= schlick(f0, 1.0, cos_i);
         }
         o = h.position;

@@ -58,8 +58,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
                 let exposed_l_r = exposure * l_r;
                 let real_caustic = select(-specular.a, 0.0, traced);
                 // The real caustic's color is unknown here: L_r's (gray on an unlit surface).
-                let lit = luminance(exposed_l_r) > 1e-6;
-                let tint = select(vec3f(1.0), exposed_l_r / max(luminance(exposed_l_r), 1e-6), lit);
+                let lum = luminance(exposed_l_r);
+                let tint = select(vec3f(1.0), exposed_l_r / max(lum, 1e-6), lum > 1e-6);
                 let real_light = exposed_l_r + real_caustic * tint;
                 let a = alpha_of(params, photo, real_light);
                 real_delta += a * (exposure * (l_rv - l_r) + caustic) + (specular.rgb - caustic);

@@ -149,7 +149,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
 
     let cos_i = max(dot(n, -e.dir), 0.0);
     let metallic = m.params.x;
-    let f0 = mix(m.dielectric.rgb, m.base_color.rgb, metallic);
+    let f0 = material_f0(m);
     let reflectance = schlick(f0, mix(m.dielectric.a, 1.0, metallic), cos_i);
     // A glossy caster reflects each photon into its GGX lobe: one microfacet per photon and
     // frame, as the camera's rays (stills and temporal smoothing average them): a rough
