@@ -195,6 +195,17 @@ const BALL_CENTRE: Vec3 = Vec3::new(0.0, 0.25, 0.0);
 /// cube in the refracted light's way. Returns the render and what caustics add to the
 /// composite's green channel per pixel (on minus off).
 fn ball_caustic(light_real: bool, ball_real: bool, blocker: bool) -> (common::Rendered, Vec<f32>) {
+    ball_caustic_with(light_real, ball_real, blocker, None)
+}
+
+/// `ball_caustic`, with a virtual mirror (`MIRROR_HALF` half size, centre, rotation about z)
+/// if given.
+fn ball_caustic_with(
+    light_real: bool,
+    ball_real: bool,
+    blocker: bool,
+    mirror_at: Option<(Vec3, f32)>,
+) -> (common::Rendered, Vec<f32>) {
     let render = |caustics: bool| {
         let mut s = Setup::top_down(BALL);
         // Additive: the uniform gray photo does not show the real lamp's light or caustic,
@@ -209,6 +220,12 @@ fn ball_caustic(light_real: bool, ball_real: bool, blocker: bool) -> (common::Re
         );
         if blocker {
             s.cube([-0.13, 0.1, 0.0], 0.03, false);
+        }
+        if let Some((centre, angle)) = mirror_at {
+            let m = s.gltf.material(mirror());
+            let mesh = s.gltf.mesh(&quad(MIRROR_HALF), Some(m), true);
+            s.gltf.node(json!({"name": "mirror", "mesh": mesh, "translation": centre.to_array(),
+                "rotation": quat([0.0, 0.0, 1.0], angle), "extras": {"real": false}}));
         }
         let g = s.gltf.material(glass());
         let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.1, 24), Some(g), true);
@@ -284,6 +301,44 @@ fn a_real_caustic_that_a_virtual_object_blocks_leaves_the_image() {
     assert!(least < -0.05, "the blocked real caustic is removed (darkest change {least})");
     let at = r.world_on_plane(i as u32 % BALL, i as u32 / BALL, 0.0);
     assert!((at - ball_chief_point()).length() < 0.12, "where the chief ray lands, not at {at}");
+}
+
+const MIRROR_HALF: f32 = 0.08;
+
+#[test]
+fn a_caustic_is_seen_in_a_virtual_mirror() {
+    // Spec §2.17.4 (Eq. T5.2/T5.3): the caustic is applied on reflected surfaces too. A
+    // virtual mirror to the right of the ball, turned so that the camera above sees the
+    // ball's caustic on the floor in it: its pixels that look at the caustic brighten with
+    // caustics on, by about what the floor there gains (the mirror reflects ~all of it).
+    let centre = Vec3::new(0.2, 0.15, 0.0);
+    let chief = ball_chief_point();
+    let incident = (centre - Vec3::Y).normalize();
+    let normal = ((chief - centre).normalize() - incident).normalize();
+    // quad() faces +y; a turn by θ about z takes +y to (−sin θ, cos θ, 0).
+    let angle = (-normal.x).atan2(normal.y);
+    let (r, added) = ball_caustic_with(true, false, false, Some((centre, angle)));
+    let (tangent, eye) = (Vec3::new(normal.y, -normal.x, 0.0), Vec3::Y);
+    let (mut best, mut best_at, mut mirror_pixels) = (0.0f32, Vec3::ZERO, 0);
+    let floor_peak = added.iter().fold(0.0f32, |m, &a| m.max(a));
+    for (i, &a) in added.iter().enumerate() {
+        let (x, y) = (i as u32 % BALL, i as u32 / BALL);
+        let d = (r.world_on_plane(x, y, 0.0) - eye).normalize();
+        let p = eye + d * ((centre - eye).dot(normal) / d.dot(normal));
+        let local = p - centre;
+        if local.dot(tangent).abs() > 0.8 * MIRROR_HALF || local.z.abs() > 0.8 * MIRROR_HALF {
+            continue; // not well inside the mirror
+        }
+        mirror_pixels += 1;
+        if a > best {
+            let reflected = d - 2.0 * d.dot(normal) * normal;
+            best = a;
+            best_at = p + reflected * (-p.y / reflected.y);
+        }
+    }
+    assert!(mirror_pixels >= 12, "the mirror covers {mirror_pixels} pixels");
+    assert!(best > 0.3 * floor_peak, "the mirror shows the caustic (brightest addition {best}, floor's {floor_peak})");
+    assert!((best_at - chief).length() < 0.1, "the mirror's brightest addition looks at {best_at}, not near {chief}");
 }
 
 /// Where a vertical ray down at horizontal offset `r` from the axis of a glass sphere (radius

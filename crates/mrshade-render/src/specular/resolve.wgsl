@@ -172,7 +172,14 @@ fn branch_light(hit: vec4f, dir: vec4f) -> BranchLight {
     }
     var light: Radiance;
     if (on_screen) {
-        light = Radiance(textureLoad(l_rv_texture, q, 0).rgb, textureLoad(l_r_texture, q, 0).rgb);
+        // The camera sees this very surface: the screen's light, and the caustics on it
+        // (§2.17.4: caustics are seen in reflections and refractions too). A surface the
+        // camera does not see has no caustic buffer texel: its caustics are missing.
+        let caustic = caustic_radiance(q, textureLoad(gbuffer_flags, q, 0).r);
+        light = Radiance(
+            textureLoad(l_rv_texture, q, 0).rgb + caustic.rv,
+            textureLoad(l_r_texture, q, 0).rgb + caustic.r,
+        );
     } else {
         light = shade_hit(triangle, x, dir.xyz);
     }
@@ -254,21 +261,28 @@ fn caustic_levels(fine: texture_2d<f32>, coarse: texture_2d<f32>, pixel: vec2i) 
         + caustic_irradiance(caustic_texel(coarse, pixel, divisor * COARSE_LEVEL_FACTOR));
 }
 
-// The caustics on the diffuse surface at `pixel`, in camera values (spec §2.17.4–§2.17.5,
-// Eq. T5.4–T5.6): the caustic buffer's irradiance through the surface's diffuse BRDF, all
-// of the L_rv photons' on a virtual pixel, on a real one their difference from the L_r
-// photons' (the photo already shows the real caustics); in a, minus the luminance of the L_r
-// photons' light (the composite's α compares the photo with all the real light it shows).
-fn caustic_light(pixel: vec2i, flags: u32) -> vec4f {
-    if (!is_covered(flags)) { return vec4f(0.0); }
+// The caustics on the diffuse surface at `pixel` (spec §2.17.4–§2.17.5, Eq. T5.4–T5.6): the
+// caustic buffer's irradiance through the surface's diffuse BRDF, of the L_rv photons and, on
+// a real surface, of the L_r photons (radiance, before exposure).
+fn caustic_radiance(pixel: vec2i, flags: u32) -> Radiance {
+    if (!is_covered(flags)) { return Radiance(vec3f(0.0), vec3f(0.0)); }
     let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
     let m = materials[material_of(flags)];
     let diffuse = am.rgb * (1.0 - am.a) * (1.0 - m.transmission.x) / PI;
-    let to_camera = frame.exposure_env.x * diffuse;
     let e_rv = caustic_levels(caustics_rv, caustics_coarse_rv, pixel);
     var e_r = vec3f(0.0);
     if (is_real(flags)) { e_r = caustic_levels(caustics_r, caustics_coarse_r, pixel); }
-    return vec4f(to_camera * (e_rv - e_r), -luminance(to_camera * e_r));
+    return Radiance(diffuse * e_rv, diffuse * e_r);
+}
+
+// The caustics the camera sees at `pixel`, in camera values: all of the L_rv photons' on a
+// virtual pixel, on a real one their difference from the L_r photons' (the photo already
+// shows the real caustics); in a, minus the luminance of the L_r photons' light (the
+// composite's α compares the photo with all the real light it shows).
+fn caustic_light(pixel: vec2i, flags: u32) -> vec4f {
+    let c = caustic_radiance(pixel, flags);
+    let exposure = frame.exposure_env.x;
+    return vec4f(exposure * (c.rv - c.r), -luminance(exposure * c.r));
 }
 
 @compute @workgroup_size(8, 8)
