@@ -11,7 +11,7 @@
 
 use crate::scene_gpu::{GpuInstance, GpuMaterial, MAX_FRUSTUM_HALF_ANGLE, Vertex};
 use anyhow::{Result, bail};
-use mrshade_core::settings::RenderSettings;
+use mrshade_core::settings::{Intersection, RenderSettings, SpecularSettings};
 use mrshade_scene::{LightKind, OutputSize, Scene, Session};
 use std::mem::size_of;
 
@@ -151,6 +151,22 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
+    // The specular stage's impostors or cube faces, in one buffer: coarser slices.
+    let slices = specular_slices(scene, &settings.specular);
+    let slices_fit = |res: u64| slices * res * res * 8 <= max_binding;
+    let (name, side) = match settings.specular.intersection {
+        Intersection::Impostor => ("specular.impostor_resolution", &mut settings.specular.impostor_resolution),
+        Intersection::Cube | Intersection::LayeredCube => {
+            ("specular.cube_resolution", &mut settings.specular.cube_resolution)
+        }
+    };
+    if !fit.shrink(name, side, &slices_fit, 16) {
+        bail!(
+            "the scene's traced objects need {slices} impostor slices (or cube faces), more than one GPU buffer of \
+             this device holds ({} MiB) even at 16×16 texels; trace fewer objects or set specular.enabled = false",
+            max_binding >> 20
+        );
+    }
     (crate::methods::entry(settings.method).fit)(&mut settings, &mut fit)?;
     check_scene_buffers(scene, device)?;
     let estimate = estimate(scene, &settings, &output);
@@ -165,6 +181,21 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
         );
     }
     Ok((settings, output, warnings))
+}
+
+/// Slices of the specular stage's views: per traced instance and every other instance, one
+/// impostor or six cube faces.
+fn specular_slices(scene: &Scene, specular: &SpecularSettings) -> u64 {
+    let traced = scene
+        .instances
+        .iter()
+        .filter(|i| {
+            let m = &scene.materials[scene.primitives[i.primitive].material];
+            specular.traces(m.metallic, m.roughness, m.transmission)
+        })
+        .count() as u64;
+    let others = (scene.instances.len() as u64).saturating_sub(1);
+    traced * others * crate::specular::impostors::slices_per_pair(specular.intersection) as u64
 }
 
 /// The scene's own buffers and textures: geometry in single bindings, textures in two arrays.
@@ -241,6 +272,11 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
         ),
         ("textures", texture_bytes),
     ];
+    let side = crate::specular::impostors::slice_resolution(&settings.specular) as u64;
+    items.push((
+        "specular impostors or cube faces (slices × resolution²)",
+        specular_slices(scene, &settings.specular) * side * side * 8,
+    ));
     // The caustics' photon G-buffers, where the specular stage runs.
     let traced = scene.materials.iter().any(|m| settings.specular.traces(m.metallic, m.roughness, m.transmission));
     if traced && settings.caustics.enabled {
@@ -339,6 +375,35 @@ mod tests {
         let tiny = DeviceLimits { max_binding: 1 << 20, ..SMALL_DEVICE };
         let err = fit_to_device(&small, tiny).unwrap_err().to_string();
         assert!(err.contains("caustics.environment_directions = 1024"), "{err}");
+    }
+
+    #[test]
+    fn the_specular_slices_shrink_to_one_buffer() {
+        // 4 mirror balls among 20 instances: 4 × 19 pairs × 6 cube faces × 512² × 8 B =
+        // 912 MiB; 128² texels (57 MiB) fit 128 MiB.
+        let mut s = session(1, 640);
+        s.scene.materials.push(mrshade_scene::Material::default());
+        s.scene.materials.push(mrshade_scene::Material { metallic: 1.0, roughness: 0.0, ..Default::default() });
+        s.scene.primitives.push(mrshade_scene::Primitive { material: 0, ..Default::default() });
+        s.scene.primitives.push(mrshade_scene::Primitive { material: 1, ..Default::default() });
+        for i in 0..20 {
+            s.scene.instances.push(mrshade_scene::Instance {
+                node_name: format!("n{i}"),
+                primitive: usize::from(i < 4),
+                world_from_object: Mat4::IDENTITY,
+                realness: Realness::Virtual,
+                skin: None,
+                morph_weights: Vec::new(),
+            });
+        }
+        s.settings.specular.intersection = mrshade_core::settings::Intersection::Cube;
+        let (fitted, _, warnings) = fit_to_device(&s, SMALL_DEVICE).unwrap();
+        assert_eq!(fitted.specular.cube_resolution, 128);
+        assert!(warnings.iter().any(|w| w.contains("specular.cube_resolution = 512")), "{warnings:?}");
+        // Impostors: one slice per pair, 152 MiB at 512²: 256² fits.
+        s.settings.specular.intersection = mrshade_core::settings::Intersection::Impostor;
+        let (fitted, _, _) = fit_to_device(&s, SMALL_DEVICE).unwrap();
+        assert_eq!(fitted.specular.impostor_resolution, 256);
     }
 
     #[test]

@@ -28,13 +28,19 @@ fn textured(x: u32, y: u32) -> [u8; 3] {
 
 #[test]
 fn real_mirrors_and_glass_without_virtual_content_return_the_photo() {
-    for method in Method::ALL {
+    // Every method, and every intersection technique with the default method.
+    let cases =
+        Method::ALL.iter().map(|&m| (m, "impostor")).chain(INTERSECTIONS[1..].iter().map(|&i| (Method::default(), i)));
+    for (method, intersection) in cases {
         let mut s = Setup::top_down(32);
         s.photo = Box::new(textured);
         s.probe = Some([0.6, 0.7, 0.9]);
         s.top_toml = format!("method = \"{}\"\n", method.name());
         // Caustics too: the real spot's photons through the real glass land alike in L_rv and L_r.
-        s.extra_toml += "[output]\nframes = 2\n[caustics]\nenabled = true\nphoton_resolution = 32\n";
+        s.extra_toml += &format!(
+            "[output]\nframes = 2\n[caustics]\nenabled = true\nphoton_resolution = 32\n\
+             [specular]\nintersection = \"{intersection}\"\n"
+        );
         s.plane(2.0, 0.0, 0.4, true).light(
             json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.9}}),
             [0.2, 0.8, 0.0],
@@ -54,7 +60,7 @@ fn real_mirrors_and_glass_without_virtual_content_return_the_photo() {
         assert!(r.renderer.specular_traced(), "the stage runs for real mirrors and glass");
         let photo: Vec<u8> = (0..32 * 32).flat_map(|i| textured(i % 32, i / 32)).collect();
         let out = r.renderer.read_composite(&r.ctx).unwrap().image.to_srgb8();
-        assert_eq!(photo, out, "bit-exact photo with {}", method.name());
+        assert_eq!(photo, out, "bit-exact photo with {} and {intersection}", method.name());
     }
 }
 
@@ -83,14 +89,24 @@ fn srgb_to_linear(c: u8) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
+/// Every `specular.intersection`.
+const INTERSECTIONS: [&str; 3] = ["impostor", "cube", "layered-cube"];
+
 #[test]
 fn a_virtual_planar_mirror_shows_the_photo_where_its_reflection_lands() {
+    for intersection in INTERSECTIONS {
+        planar_mirror(intersection);
+    }
+}
+
+fn planar_mirror(intersection: &str) {
     const SIZE: u32 = 48;
     // A virtual mirror tilted 60° about z above a real floor, seen from straight above: the
     // reflected rays go down to the right and meet the floor at a point the photo shows.
     let mut s = Setup::top_down(SIZE);
     s.photo = Box::new(textured);
     s.probe = Some([0.5, 0.5, 0.5]);
+    s.extra_toml += &format!("[specular]\nintersection = \"{intersection}\"\n");
     s.plane(2.0, 0.0, 0.5, true);
     let m = s.gltf.material(mirror());
     let mesh = s.gltf.mesh(&quad(0.05), Some(m), true);
@@ -121,22 +137,27 @@ fn a_virtual_planar_mirror_shows_the_photo_where_its_reflection_lands() {
             let got = composite.get(x, y);
             // The mirror's weight (split-sum albedo ≈ 1) is the same in every channel.
             let (q, best, k) = photo_pixel_match(got, clip_from_world.project_point3(hit), SIZE);
-            assert!(best < 0.02, "pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} scaled (spread {best})");
-            assert!((0.8..=1.05).contains(&k), "pixel ({x}, {y}): mirror weight {k}");
+            assert!(
+                best < 0.02,
+                "{intersection}: pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} scaled (spread {best})"
+            );
+            assert!((0.8..=1.05).contains(&k), "{intersection}: pixel ({x}, {y}): mirror weight {k}");
             checked += 1;
         }
     }
-    assert!(checked >= 5, "only {checked} mirror pixels checked");
+    assert!(checked >= 5, "{intersection}: only {checked} mirror pixels checked");
 }
 
 #[test]
 fn a_virtual_glass_slab_shifts_the_photo_by_the_analytic_amount() {
-    for refraction in ["traced", "two-interfaces"] {
-        slab_shift(refraction);
+    for (refraction, intersection) in
+        [("traced", "impostor"), ("two-interfaces", "impostor"), ("traced", "cube"), ("traced", "layered-cube")]
+    {
+        slab_shift(refraction, intersection);
     }
 }
 
-fn slab_shift(refraction: &str) {
+fn slab_shift(refraction: &str, intersection: &str) {
     const SIZE: u32 = 48;
     // A 30 cm glass slab (ior 1.5, no absorption) 5 cm above a real floor, seen from straight
     // above: a view ray at angle θ leaves the slab parallel to itself, shifted sideways by
@@ -147,7 +168,9 @@ fn slab_shift(refraction: &str) {
     s.photo = Box::new(textured);
     // One frame (`direct`): internal reflections dropped, so that every ray leaves through the
     // bottom face (sampled, a few would leave through the top in any one frame).
-    s.extra_toml += &format!("[specular]\nrefraction = \"{refraction}\"\ninternal_reflections = \"dropped\"\n");
+    s.extra_toml += &format!(
+        "[specular]\nrefraction = \"{refraction}\"\ninternal_reflections = \"dropped\"\nintersection = \"{intersection}\"\n"
+    );
     s.plane(2.0, 0.0, 0.5, true);
     let m = s
         .gltf
@@ -174,10 +197,10 @@ fn slab_shift(refraction: &str) {
         let (q, best, k) = photo_pixel_match(got, clip_from_world.project_point3(hit), SIZE);
         assert!(
             best < 0.02,
-            "{refraction}: pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} (spread {best})"
+            "{refraction}, {intersection}: pixel ({x}, {y}): composite {got:?} is not photo pixel {q:?} (spread {best})"
         );
         // Two interfaces of (1 − F) each at these angles: 0.85–0.93 of the photo.
-        assert!((0.8..=0.95).contains(&k), "{refraction}: pixel ({x}, {y}): slab transmittance {k}");
+        assert!((0.8..=0.95).contains(&k), "{refraction}, {intersection}: pixel ({x}, {y}): slab transmittance {k}");
         // The floor seen by one pixel: 2·tan(0.5 rad) m over SIZE pixels.
         if shift / (2.0 * 0.5f32.tan() / SIZE as f32) > 1.0 {
             shifted += 1;

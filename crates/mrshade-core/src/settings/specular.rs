@@ -14,6 +14,17 @@ pub enum Intersection {
     /// refined by bisection; the hit texel's triangle is then intersected exactly.
     #[default]
     Impostor,
+    /// Standard cubic environment mapping (spec §2.14): a 90° cube of every other object seen
+    /// from the specular object's centre; the texel in the ray's *direction* gives the
+    /// surface (its plane then meets the ray), whatever the ray's origin, as the thesis's
+    /// baseline does ("the captured environment is only accurate at its center"). One
+    /// bounce of the cube; self-reflections from the object's own triangles.
+    Cube,
+    /// Layered cubic environment mapping (spec §2.15, Umenhoffer et al.): the same cubes
+    /// marched along the ray (`linear_steps`, then `binary_steps` of bisection on the first
+    /// under/overshoot pair), one layer per other object; the object's own front- and
+    /// back-face layers are replaced by the exact intersection of its own triangles.
+    LayeredCube,
 }
 
 /// How a refracted ray finds where it leaves a transmissive object.
@@ -67,8 +78,11 @@ pub struct SpecularSettings {
     /// runs only when the scene holds such a material; off, they reflect and refract the
     /// probe alone. Default on.
     pub enabled: bool,
-    /// Ray intersection technique. Default `impostor`.
+    /// Ray intersection technique: `impostor`, `cube` or `layered-cube`. Default `impostor`.
     pub intersection: Intersection,
+    /// Side of each cube-map face of `cube` and `layered-cube`, texels. Default 512 [T §7:
+    /// 512×512×6].
+    pub cube_resolution: u32,
     /// Side of each impostor texture, texels. Default 512 [T §7, P §7].
     pub impostor_resolution: u32,
     /// Linear search steps of the impostor march. Default 64 [T §7].
@@ -109,6 +123,7 @@ impl Default for SpecularSettings {
         Self {
             enabled: true,
             intersection: Intersection::Impostor,
+            cube_resolution: 512,
             impostor_resolution: 512,
             linear_steps: 64,
             binary_steps: 8,
@@ -136,6 +151,11 @@ impl SpecularSettings {
             (16..=4096).contains(&self.impostor_resolution),
             "specular.impostor_resolution",
             format!("must be between 16 and 4096 texels, got {}", self.impostor_resolution),
+        )?;
+        check(
+            (16..=4096).contains(&self.cube_resolution),
+            "specular.cube_resolution",
+            format!("must be between 16 and 4096 texels, got {}", self.cube_resolution),
         )?;
         check(
             (1..=1024).contains(&self.linear_steps),
@@ -178,6 +198,7 @@ mod tests {
         s.validate().unwrap();
         assert_eq!((s.impostor_resolution, s.linear_steps, s.binary_steps), (512, 64, 8));
         assert_eq!(s.intersection, Intersection::Impostor);
+        assert_eq!(s.cube_resolution, 512);
         assert_eq!(s.refraction_policy, RefractionPolicy::KeepRefraction);
     }
 
@@ -201,6 +222,12 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("backprojection_epsilon"));
         let err = toml::from_str::<SpecularSettings>("refraction_policy = \"c\"").unwrap_err();
         assert!(err.to_string().contains("keep-refraction"), "{err}");
+        let bad = SpecularSettings { cube_resolution: 8, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("specular.cube_resolution"));
+        let err = toml::from_str::<SpecularSettings>("intersection = \"planar-cube\"").unwrap_err();
+        assert!(err.to_string().contains("layered-cube"), "{err}");
+        let parsed: SpecularSettings = toml::from_str("intersection = \"layered-cube\"").unwrap();
+        assert_eq!(parsed.intersection, Intersection::LayeredCube);
         let err = toml::from_str::<SpecularSettings>("internal_reflections = \"kept\"").unwrap_err();
         assert!(err.to_string().contains("sampled") && err.to_string().contains("dropped"), "{err}");
     }

@@ -46,6 +46,8 @@ const KEYS: &[(&str, Kind)] = &[
     ("dir.temporal.base_confidence", Kind::Number),
     ("specular.enabled", Kind::Bool),
     ("specular.impostor_resolution", Kind::Number),
+    ("specular.intersection", Kind::Choice(&["impostor", "cube", "layered-cube", "planar"])),
+    ("specular.cube_resolution", Kind::Number),
     ("specular.linear_steps", Kind::Number),
     ("specular.binary_steps", Kind::Number),
     ("specular.max_bounces", Kind::Number),

@@ -11,14 +11,6 @@ struct ShadowParams {
     bias: vec4f,
 }
 
-// Which of the six cube faces (+X, −X, +Y, −Y, +Z, −Z) sees direction `d`.
-fn cube_face(d: vec3f) -> u32 {
-    let a = abs(d);
-    if (a.x >= a.y && a.x >= a.z) { return select(1u, 0u, d.x > 0.0); }
-    if (a.y >= a.z) { return select(3u, 2u, d.y > 0.0); }
-    return select(5u, 4u, d.z > 0.0);
-}
-
 // 1 where the receiver at reversed depth `depth` is not behind the caster in texel (x, y).
 fn shadow_test(layer: u32, x: i32, y: i32, depth: f32) -> f32 {
     let res = i32(shadow_params.size.x);

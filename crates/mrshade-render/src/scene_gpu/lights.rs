@@ -124,13 +124,17 @@ fn light_faces(light: &Light, center: Vec3, radius: f32, near: f32) -> Faces {
         }
         _ => {
             let fov = std::f32::consts::FRAC_PI_2 + FOV_MARGIN;
-            let axes = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
-            Faces {
-                clip_from_world: axes.iter().map(|&a| perspective(fov) * look_to(position, a)).collect(),
-                texel_extent: 2.0 * (fov * 0.5).tan(),
-            }
+            Faces { clip_from_world: cube_faces(position, fov, near).to_vec(), texel_extent: 2.0 * (fov * 0.5).tan() }
         }
     }
+}
+
+/// The six faces of a cube map at `eye` (+X, −X, +Y, −Y, +Z, −Z, `cube_face` in cube.wgsl),
+/// each a square perspective of field of view `fov` (π/2 and a margin) with reversed depth
+/// from `near` to infinity.
+pub fn cube_faces(eye: Vec3, fov: f32, near: f32) -> [Mat4; 6] {
+    let perspective = glam::camera::rh::proj::directx::perspective_infinite_reverse(fov, 1.0, near);
+    [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z].map(|a| perspective * look_to(eye, a))
 }
 
 /// View matrix looking from `eye` along unit `dir`.

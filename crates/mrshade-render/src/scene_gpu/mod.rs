@@ -10,7 +10,7 @@ mod probe;
 
 pub use geometry::{Geometry, GpuInstance, Vertex};
 pub(crate) use lights::MAX_FRUSTUM_HALF_ANGLE;
-pub use lights::{GpuLight, ShadowLayer, look_to, pack_lights};
+pub use lights::{GpuLight, ShadowLayer, cube_faces, look_to, pack_lights};
 pub use materials::{GpuMaterial, GpuMaterials};
 pub use probe::GpuProbe;
 

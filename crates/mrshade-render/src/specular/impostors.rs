@@ -2,12 +2,15 @@
 //! instance seen from its centre through an orthographic camera fitted to that instance's
 //! box, rasterised into one slice of a shared visibility array each frame. A flat instance
 //! (a desk) is seen along its thin axis, the manual "world up" alignment the thesis used for
-//! its desk, chosen here automatically.
+//! its desk, chosen here automatically. With `intersection = "cube"` or `"layered-cube"`
+//! (spec §2.14, §2.15) each pair has six slices instead: the faces of a 90° cube map at the
+//! traced instance's centre, in the order of `scene_gpu::cube_faces`.
 
 use crate::raster::{Casters, RasterView, Rasterizer};
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, UVec4, Vec3};
+use glam::{Mat4, UVec4, Vec3, Vec4};
+use mrshade_core::settings::{Intersection, SpecularSettings};
 use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::Recorder;
 use wgpu::util::DeviceExt;
@@ -16,61 +19,88 @@ use wgpu::util::DeviceExt;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuImpostor {
-    /// Orthographic, reversed depth (near → 1).
+    /// Orthographic (an impostor) or one cube face's perspective, reversed depth (near → 1).
     pub clip_from_world: Mat4,
-    /// Instance drawn, first texel of its slice, unused, unused.
+    /// Instance drawn, first texel of its slice, side in texels, unused.
     pub info: UVec4,
+    /// Cube faces: the traced instance's centre, where the cube is (w unused).
+    pub eye: Vec4,
+    /// The drawn instance's world box, where a layered cube is marched (w unused).
+    pub seen_min: Vec4,
+    /// See `seen_min`.
+    pub seen_max: Vec4,
 }
 
 /// An instance whose thinnest side is below this fraction of its longest is flat: it is seen
 /// along its thin axis, so that its one large face fills the impostor.
 const FLAT_RATIO: f32 = 0.25;
 
-/// The impostors of every traced instance.
+/// Slices per (traced instance, seen instance) pair: 1 impostor or 6 cube faces.
+pub fn slices_per_pair(intersection: Intersection) -> u32 {
+    match intersection {
+        Intersection::Impostor => 1,
+        Intersection::Cube | Intersection::LayeredCube => 6,
+    }
+}
+
+/// Side of each slice, texels.
+pub fn slice_resolution(settings: &SpecularSettings) -> u32 {
+    match settings.intersection {
+        Intersection::Impostor => settings.impostor_resolution,
+        Intersection::Cube | Intersection::LayeredCube => settings.cube_resolution,
+    }
+}
+
+/// The impostors (or cube faces) of every traced instance.
 pub struct Impostors {
-    /// (traced instance, instance it sees) per impostor.
+    /// (traced instance, instance it sees) per pair.
     pairs: Vec<(usize, usize)>,
+    intersection: Intersection,
+    resolution: u32,
+    /// One per slice.
     views: Vec<RasterView>,
-    /// `GpuImpostor` per impostor.
+    /// `GpuImpostor` per slice.
     pub table: wgpu::Buffer,
     /// Visibility texels of every slice, `resolution²` each.
     pub texels: wgpu::Buffer,
-    /// Impostor range per instance: first, count (0 for untraced instances).
+    /// Slice range per instance: first, count (0 for untraced instances).
     pub ranges: Vec<(u32, u32)>,
     /// The slices no longer show where the instances are (at first, and after a move).
     stale: bool,
 }
 
 impl Impostors {
-    /// One impostor per (traced instance, other instance) pair, `resolution²` texels each.
+    /// The slices of every (traced instance, other instance) pair, `resolution²` texels each.
     pub fn new(
         ctx: &GpuContext,
         rasterizer: &Rasterizer,
         geometry: &Geometry,
         traced: &[bool],
-        resolution: u32,
+        settings: &SpecularSettings,
     ) -> Self {
         let n = geometry.instance_count();
+        let per_pair = slices_per_pair(settings.intersection);
+        let resolution = slice_resolution(settings);
         let mut pairs = Vec::new();
         let mut ranges = vec![(0, 0); n];
         for (s, _) in traced.iter().enumerate().filter(|(_, t)| **t) {
-            ranges[s] = (pairs.len() as u32, n as u32 - 1);
+            ranges[s] = (pairs.len() as u32 * per_pair, (n as u32 - 1) * per_pair);
             pairs.extend((0..n).filter(|&o| o != s).map(|o| (s, o)));
         }
         let slice = resolution as u64 * resolution as u64;
+        let slices = pairs.len() as u64 * per_pair as u64;
         let texels = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("specular/impostor_texels"),
-            size: (pairs.len().max(1) as u64 * slice * 8).max(8),
+            size: (slices.max(1) * slice * 8).max(8),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let gpu = impostor_table(geometry, &pairs, resolution);
-        let views = pairs
+        let gpu = impostor_table(geometry, &pairs, settings.intersection, resolution);
+        let views = gpu
             .iter()
-            .zip(&gpu)
             .enumerate()
-            .map(|(k, (&(_, seen), imp))| {
-                let (_, first, count) = geometry.instance_triangles(seen);
+            .map(|(k, imp)| {
+                let (_, first, count) = geometry.instance_triangles(imp.info.x as usize);
                 rasterizer.view(
                     ctx,
                     geometry,
@@ -78,7 +108,7 @@ impl Impostors {
                     (resolution, resolution),
                     Casters::Range { first, count },
                     imp.clip_from_world,
-                    0.0,
+                    cube_near(imp),
                     Some((&texels, k as u64 * slice * 8)),
                 )
             })
@@ -88,17 +118,17 @@ impl Impostors {
             contents: bytemuck::cast_slice(&pad(gpu)),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
-        Self { pairs, views, table, texels, ranges, stale: true }
+        Self { pairs, intersection: settings.intersection, resolution, views, table, texels, ranges, stale: true }
     }
 
-    /// Fits every impostor camera to where the instances are now, if any moved or deformed
+    /// Fits every slice's camera to where the instances are now, if any moved or deformed
     /// (the thesis: an update "is only required for a change in the alignment", §2.16.2).
-    pub fn update(&mut self, queue: &wgpu::Queue, geometry: &Geometry, resolution: u32) {
+    pub fn update(&mut self, queue: &wgpu::Queue, geometry: &Geometry) {
         if !geometry.moved() && !self.stale {
             return;
         }
         self.stale = true;
-        let gpu = impostor_table(geometry, &self.pairs, resolution);
+        let gpu = impostor_table(geometry, &self.pairs, self.intersection, self.resolution);
         for (view, imp) in self.views.iter_mut().zip(&gpu) {
             view.set_clip_from_world(queue, imp.clip_from_world);
         }
@@ -123,16 +153,46 @@ fn pad(mut gpu: Vec<GpuImpostor>) -> Vec<GpuImpostor> {
     gpu
 }
 
-fn impostor_table(geometry: &Geometry, pairs: &[(usize, usize)], resolution: u32) -> Vec<GpuImpostor> {
+/// The near-plane distance of a cube face's perspective (0 for an orthographic impostor),
+/// kept in its unused `eye.w`.
+fn cube_near(imp: &GpuImpostor) -> f32 {
+    imp.eye.w
+}
+
+/// Every slice's record: per pair, one impostor or six cube faces.
+fn impostor_table(
+    geometry: &Geometry,
+    pairs: &[(usize, usize)],
+    intersection: Intersection,
+    resolution: u32,
+) -> Vec<GpuImpostor> {
     let slice = resolution * resolution;
-    pairs
-        .iter()
-        .enumerate()
-        .map(|(k, &(s, o))| GpuImpostor {
-            clip_from_world: impostor_clip_from_world(geometry.world_box(s), geometry.world_box(o)),
-            info: UVec4::new(o as u32, k as u32 * slice, 0, 0),
-        })
-        .collect()
+    let mut table = Vec::new();
+    for &(s, o) in pairs {
+        let (traced, seen) = (geometry.world_box(s), geometry.world_box(o));
+        let record = |clip_from_world: Mat4, eye: Vec4| GpuImpostor {
+            clip_from_world,
+            info: UVec4::new(o as u32, 0, resolution, 0),
+            eye,
+            seen_min: seen.0.extend(0.0),
+            seen_max: seen.1.extend(0.0),
+        };
+        match intersection {
+            Intersection::Impostor => table.push(record(impostor_clip_from_world(traced, seen), Vec4::ZERO)),
+            Intersection::Cube | Intersection::LayeredCube => {
+                let eye = (traced.0 + traced.1) * 0.5;
+                // Nothing else is inside the traced instance: a near plane well within it.
+                let near = 1e-3 * (traced.1 - traced.0).length().max(1e-3);
+                let faces =
+                    crate::scene_gpu::cube_faces(eye, std::f32::consts::FRAC_PI_2 + crate::scene_gpu::FOV_MARGIN, near);
+                table.extend(faces.map(|f| record(f, eye.extend(near))));
+            }
+        }
+    }
+    for (k, imp) in table.iter_mut().enumerate() {
+        imp.info.y = k as u32 * slice;
+    }
+    table
 }
 
 /// The orthographic camera at the centre of `specular` looking at `seen` (or along its thin

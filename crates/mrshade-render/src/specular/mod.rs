@@ -30,7 +30,7 @@ use interior::Interiors;
 use mrshade_core::Differential;
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::{
-    Concentration, InternalReflections, Refraction, RefractionPolicy, RenderSettings, SpecularSettings,
+    Concentration, InternalReflections, Intersection, Refraction, RefractionPolicy, RenderSettings,
 };
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
@@ -138,7 +138,6 @@ impl SpecularGBuffers {
 
 /// The stage: built only when the scene holds a traced material and the stage is on.
 pub struct SpecularStage {
-    settings: SpecularSettings,
     impostors: Impostors,
     interiors: Interiors,
     /// The camera's view of real geometry only, then the farthest surface of each
@@ -183,7 +182,7 @@ impl SpecularStage {
         }
         let ctx = inputs.ctx;
         let device = &ctx.device;
-        let impostors = Impostors::new(ctx, inputs.rasterizer, geometry, &traced, settings.impostor_resolution);
+        let impostors = Impostors::new(ctx, inputs.rasterizer, geometry, &traced, &settings);
 
         // Camera views: real-only, then one farthest-surface view per transmissive instance,
         // each at an aligned offset of one buffer.
@@ -244,7 +243,7 @@ impl SpecularStage {
         let owners = storage("specular/owners", bytemuck::cast_slice(&owners), wgpu::BufferUsages::STORAGE);
         let params = SpecularParams {
             steps: UVec4::new(
-                settings.impostor_resolution,
+                impostors::slice_resolution(&settings),
                 settings.linear_steps,
                 settings.binary_steps,
                 settings.max_bounces,
@@ -265,7 +264,11 @@ impl SpecularStage {
                 inputs.point_light.as_ref().map_or(0, |p| p.count),
                 inputs.point_light.as_ref().map_or(1, |p| p.stride.max(1)),
                 (settings.internal_reflections == InternalReflections::Sampled) as u32,
-                0,
+                match settings.intersection {
+                    Intersection::Impostor => 0,
+                    Intersection::Cube => 1,
+                    Intersection::LayeredCube => 2,
+                },
             ),
         };
         let params = storage("specular/params", bytemuck::bytes_of(&params), wgpu::BufferUsages::UNIFORM);
@@ -470,7 +473,6 @@ impl SpecularStage {
             &[&resolve_inputs, &resolve_scene, &resolve_probe, &resolve_output],
         );
         Some(Self {
-            settings,
             impostors,
             interiors,
             camera_views,
@@ -489,7 +491,7 @@ impl SpecularStage {
     /// Moves the impostor cameras to where the instances are and the camera views to
     /// `clip_from_world` (this frame's camera, jittered like the G-buffer's).
     pub fn prepare(&mut self, queue: &wgpu::Queue, geometry: &crate::scene_gpu::Geometry, clip_from_world: Mat4) {
-        self.impostors.update(queue, geometry, self.settings.impostor_resolution);
+        self.impostors.update(queue, geometry);
         self.interiors.update(queue, geometry);
         if let Some(caustics) = &self.caustics {
             caustics.prepare(queue, geometry);
@@ -538,6 +540,7 @@ pub const TRACE_SHADER: &str = wgsl!(
     "../../shaders/lib/brdf.wgsl",
     "../../shaders/lib/sampling.wgsl",
     "../../shaders/lib/dfg.wgsl",
+    "../../shaders/lib/cube.wgsl",
     "tracing.wgsl",
     "trace.wgsl",
 );
@@ -551,6 +554,7 @@ pub const RESOLVE_SHADER: &str = wgsl!(
     "../../shaders/lib/dfg.wgsl",
     "../../shaders/lib/env.wgsl",
     "../../shaders/lib/lights.wgsl",
+    "../../shaders/lib/cube.wgsl",
     "../../shaders/lib/shadow.wgsl",
     "../../shaders/lib/punctual.wgsl",
     "../../shaders/lib/material_textures.wgsl",

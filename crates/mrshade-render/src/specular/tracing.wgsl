@@ -1,12 +1,13 @@
-// Ray intersection through depth-refined impostors (reflections spec §2.16.3), shared by the
-// trace pass (camera rays) and the resolve pass (the real-only world's rays). Each specular
-// instance owns a range of impostors: every other instance seen from its centre through an
-// orthographic camera, as a visibility texture of the compute rasteriser (reversed depth,
-// triangle + 1). A ray is clipped to an impostor's box, marched in `linear_steps`, and the
-// first under/overshoot pair is bisected `binary_steps` times; the triangle in the texel
-// found is then intersected exactly (the documents interpolate stored attributes instead),
-// and a hit whose triangle plane lies far from the marched depth is a depth discontinuity,
-// not a surface, and the march goes on. Bindings are declared by the including pass:
+// Ray intersection through depth-refined impostors (reflections spec §2.16.3) or cube maps
+// (§2.14, §2.15), shared by the trace pass (camera rays), the resolve pass (the real-only
+// world's rays) and the photons. Each specular instance owns a range of slices: every other
+// instance seen from its centre through an orthographic camera (or the six faces of a cube),
+// as visibility textures of the compute rasteriser (reversed depth, triangle + 1). A ray is
+// clipped to an impostor's box, marched in `linear_steps`, and the first under/overshoot
+// pair is bisected `binary_steps` times; the triangle in the texel found is then intersected
+// exactly (the documents interpolate stored attributes instead), and a hit whose triangle
+// plane lies far from the marched depth is a depth discontinuity, not a surface, and the
+// march goes on. Bindings are declared by the including pass:
 // params, impostors, owners, impostor_texels, instances, vertices, indices, triangles, materials.
 
 struct SpecularParams {
@@ -19,14 +20,25 @@ struct SpecularParams {
     // (m), unused
     tolerances: vec4f,
     // the method's VPL slots (0: none), the stride of the VPL subset a hit surface is shaded
-    // with, 1 if internal reflections are sampled (0: dropped), unused
+    // with, 1 if internal reflections are sampled (0: dropped), intersection (INTERSECTION_*)
     more: vec4u,
 }
 
+// `specular.intersection`: how a ray finds its surface in the slices of a pair.
+const INTERSECTION_IMPOSTOR: u32 = 0u;
+const INTERSECTION_CUBE: u32 = 1u;
+const INTERSECTION_LAYERED_CUBE: u32 = 2u;
+
+// One slice: an impostor, or one face of a pair's cube (six in a row, in cube_face's order).
 struct Impostor {
     clip_from_world: mat4x4f,
-    // instance drawn, first texel of its slice, unused, unused
+    // instance drawn, first texel of its slice, side in texels, unused
     info: vec4u,
+    // cube faces: the traced instance's centre; w: the faces' near plane
+    eye: vec4f,
+    // the drawn instance's world box
+    seen_min: vec4f,
+    seen_max: vec4f,
 }
 
 // Per instance: first impostor and impostor count of its set (0 if not traced), first texel of
@@ -49,7 +61,7 @@ struct RayEnd {
 }
 
 fn impostor_texel(imp: Impostor, c: vec3f) -> vec2u {
-    let res = params.steps.x;
+    let res = imp.info.z;
     let uv = vec2f(c.x * 0.5 + 0.5, 0.5 - c.y * 0.5);
     let xy = min(vec2u(max(uv, vec2f(0.0)) * f32(res)), vec2u(res - 1u));
     return impostor_texels[imp.info.y + xy.y * res + xy.x];
@@ -61,67 +73,129 @@ fn behind(texel: vec2u, c: vec3f) -> f32 {
     return bitcast<f32>(texel.y) - c.z;
 }
 
-// The nearest surface of impostor `imp` on the ray before `t_max`: (triangle + 1, t), or
-// triangle 0.
-fn march_impostor(imp: Impostor, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
-    let co = (imp.clip_from_world * vec4f(origin, 1.0)).xyz;
-    let cd = (imp.clip_from_world * vec4f(dir, 0.0)).xyz;
-    // Clip the ray to the impostor's box: x, y ∈ [−1, 1], reversed depth ∈ [0, 1].
-    var t0 = 0.0;
-    var t1 = t_max;
-    let lo = vec3f(-1.0, -1.0, 0.0);
-    for (var k = 0; k < 3; k++) {
-        if (abs(cd[k]) < 1e-20) {
-            if (co[k] < lo[k] || co[k] > 1.0) { return vec2f(0.0); }
-            continue;
-        }
-        let a = (lo[k] - co[k]) / cd[k];
-        let b = (1.0 - co[k]) / cd[k];
-        t0 = max(t0, min(a, b));
-        t1 = min(t1, max(a, b));
+// What a pair's slices show at a point of the ray: the texel, and how far behind its surface
+// the point lies (> 0: behind, in the slice's reversed depth).
+struct SliceSample {
+    texel: vec2u,
+    behind: f32,
+}
+
+// The ray in one pair's slices: for an impostor, origin and direction in its clip space
+// (orthographic: the point at t is co + cd·t); for a cube, in world space.
+struct SliceRay {
+    first: u32,
+    co: vec3f,
+    cd: vec3f,
+}
+
+// What the cube of slices `first`…`first + 5` shows toward world point `x`.
+fn cube_sample(first: u32, x: vec3f) -> SliceSample {
+    let face = impostors[first + cube_face(x - impostors[first].eye.xyz)];
+    let clip = face.clip_from_world * vec4f(x, 1.0);
+    let ndc = clip.xyz / clip.w;
+    let texel = impostor_texel(face, ndc);
+    return SliceSample(texel, behind(texel, ndc));
+}
+
+fn slice_sample(ray: SliceRay, t: f32) -> SliceSample {
+    if (params.more.w == INTERSECTION_IMPOSTOR) {
+        let c = ray.co + ray.cd * t;
+        let texel = impostor_texel(impostors[ray.first], c);
+        return SliceSample(texel, behind(texel, c));
     }
-    if (t0 >= t1) { return vec2f(0.0); }
+    return cube_sample(ray.first, ray.co + ray.cd * t);
+}
+
+// The part [t0, t1] of the ray `co + cd·t`, t ∈ [0, t_max], inside the box `lo`…`hi`
+// (t0 > t1: none); axes the ray runs parallel to are handled by a tiny stand-in slope.
+fn box_span(co: vec3f, cd: vec3f, lo: vec3f, hi: vec3f, t_max: f32) -> vec2f {
+    let slope = select(cd, vec3f(1e-20), abs(cd) < vec3f(1e-20));
+    return slab_span(co, 1.0 / slope, lo, hi, t_max);
+}
+
+// The nearest surface of the pair whose slices start at `first` on the ray before `t_max`:
+// (triangle + 1, t), or triangle 0. Impostors (§2.16.3) clip the ray to the impostor's box
+// (x, y ∈ [−1, 1], reversed depth ∈ [0, 1]); layered cubes (§2.15) to the drawn instance's
+// world box. The span is marched in `linear_steps` for the first under/overshoot pair,
+// bisected `binary_steps` times (empty texels count as the near side), and the texel's
+// triangle intersected exactly; a triangle far from the marched depth is a depth
+// discontinuity, not a surface, and the march goes on.
+fn march_slices(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
+    let imp = impostors[first];
+    var ray = SliceRay(first, origin, dir);
+    var span: vec2f;
+    if (params.more.w == INTERSECTION_IMPOSTOR) {
+        ray.co = (imp.clip_from_world * vec4f(origin, 1.0)).xyz;
+        ray.cd = (imp.clip_from_world * vec4f(dir, 0.0)).xyz;
+        span = box_span(ray.co, ray.cd, vec3f(-1.0, -1.0, 0.0), vec3f(1.0), t_max);
+    } else {
+        let pad = 1e-3 * max(distance(imp.seen_min.xyz, imp.seen_max.xyz), 1e-3);
+        span = box_span(origin, dir, imp.seen_min.xyz - pad, imp.seen_max.xyz + pad, t_max);
+    }
+    if (span.x >= span.y) { return vec2f(0.0); }
     let steps = params.steps.y;
-    let step = (t1 - t0) / f32(steps);
-    var prev_t = t0;
+    let step = (span.y - span.x) / f32(steps);
+    var prev_t = span.x;
     var prev_s = 0.0;
     var prev_valid = false;
     for (var i = 0u; i <= steps; i++) {
-        let t = t0 + step * f32(i);
-        let texel = impostor_texel(imp, co + cd * t);
-        if (texel.x == 0u) {
+        let t = span.x + step * f32(i);
+        let c = slice_sample(ray, t);
+        if (c.texel.x == 0u) {
             prev_valid = false;
             prev_t = t;
             continue;
         }
-        let s = behind(texel, co + cd * t);
-        if (prev_valid && (s >= 0.0) != (prev_s >= 0.0)) {
-            // Bisect the pair; empty texels count as the near side.
+        if (prev_valid && (c.behind >= 0.0) != (prev_s >= 0.0)) {
             var a = prev_t;
             var b = t;
-            var triangle = texel.x;
+            var triangle = c.texel.x;
             for (var j = 0u; j < params.steps.z; j++) {
                 let mid = 0.5 * (a + b);
-                let cm = co + cd * mid;
-                let tm = impostor_texel(imp, cm);
-                let sm = select(prev_s, behind(tm, cm), tm.x != 0u);
-                if ((sm >= 0.0) == (s >= 0.0)) {
+                let m = slice_sample(ray, mid);
+                let sm = select(prev_s, m.behind, m.texel.x != 0u);
+                if ((sm >= 0.0) == (c.behind >= 0.0)) {
                     b = mid;
-                    if (tm.x != 0u) { triangle = tm.x; }
+                    if (m.texel.x != 0u) { triangle = m.texel.x; }
                 } else {
                     a = mid;
                 }
             }
             let h = intersect(triangle - 1u, origin, dir);
-            if (h.t > 0.0 && abs(h.t - b) <= 2.0 * step + 1e-4) {
+            if (h.t > 0.0 && abs(h.t - b) <= 2.0 * step + 1e-4 + cube_texel_depth(imp, origin + dir * b)) {
                 return vec2f(f32(triangle), h.t);
             }
         }
         prev_valid = true;
-        prev_s = s;
+        prev_s = c.behind;
         prev_t = t;
     }
     return vec2f(0.0);
+}
+
+// How far a cube's texel may put a surface off the ray at `x` (four texels' width there, 92°
+// over the side): a thin object's span is marched in tiny steps, finer than the texels.
+// Impostors store the depth of flat objects exactly: 0.
+fn cube_texel_depth(imp: Impostor, x: vec3f) -> f32 {
+    if (params.more.w == INTERSECTION_IMPOSTOR) { return 0.0; }
+    return 4.0 * 2.07 / f32(imp.info.z) * distance(x, imp.eye.xyz);
+}
+
+// Standard cubic environment mapping (spec §2.14): the surface the cube of slices `first`…
+// shows in the ray's direction, wherever the ray starts ("only accurate at its center"), met
+// by the ray on its plane: (triangle + 1, t), or triangle 0.
+fn lookup_cube(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
+    let texel = cube_sample(first, impostors[first].eye.xyz + dir).texel;
+    if (texel.x == 0u) { return vec2f(0.0); }
+    let h = intersect(texel.x - 1u, origin, dir);
+    if (h.t <= 0.0 || h.t >= t_max) { return vec2f(0.0); }
+    return vec2f(f32(texel.x), h.t);
+}
+
+// The nearest surface of the pair whose slices start at `k`, by `specular.intersection`.
+fn intersect_pair(k: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
+    if (params.more.w == INTERSECTION_CUBE) { return lookup_cube(k, origin, dir, t_max); }
+    return march_slices(k, origin, dir, t_max);
 }
 
 fn instance_is_real(instance: u32) -> bool {
@@ -148,10 +222,10 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_
     var current = owner;
     for (var bounce = 0u; bounce <= params.steps.w; bounce++) {
         var best = vec2f(0.0, 3.0e38);
-        for (var k = range.x; k < range.x + range.y; k++) {
-            let imp = impostors[k];
-            if (real_only && !instance_is_real(imp.info.x)) { continue; }
-            let hit = march_impostor(imp, o, d, best.y);
+        let per_pair = select(6u, 1u, params.more.w == INTERSECTION_IMPOSTOR);
+        for (var k = range.x; k < range.x + range.y; k += per_pair) {
+            if (real_only && !instance_is_real(impostors[k].info.x)) { continue; }
+            let hit = intersect_pair(k, o, d, best.y);
             if (hit.x > 0.0 && hit.y < best.y) { best = hit; }
         }
         // The object itself (its BVH, when rigid): the self-reflections impostors miss
@@ -312,13 +386,20 @@ struct Interior {
     info: vec4u,
 }
 
-// Entry distance of the ray into box [lo, hi] before `t_max`, or −1.
-fn box_entry(o: vec3f, inv_d: vec3f, lo: vec3f, hi: vec3f, t_max: f32) -> f32 {
+// The part [t0, t1] of the ray (o, 1/inv_d), t ∈ [0, t_max], inside box [lo, hi] (the slab
+// test; t0 > t1: none).
+fn slab_span(o: vec3f, inv_d: vec3f, lo: vec3f, hi: vec3f, t_max: f32) -> vec2f {
     let a = (lo - o) * inv_d;
     let b = (hi - o) * inv_d;
     let t0 = max(max(min(a.x, b.x), min(a.y, b.y)), max(min(a.z, b.z), 0.0));
     let t1 = min(min(max(a.x, b.x), max(a.y, b.y)), min(max(a.z, b.z), t_max));
-    return select(-1.0, t0, t0 <= t1);
+    return vec2f(t0, t1);
+}
+
+// Entry distance of the ray into box [lo, hi] before `t_max`, or −1.
+fn box_entry(o: vec3f, inv_d: vec3f, lo: vec3f, hi: vec3f, t_max: f32) -> f32 {
+    let span = slab_span(o, inv_d, lo, hi, t_max);
+    return select(-1.0, span.x, span.x <= span.y);
 }
 
 // Distance along object-space ray (o, d) to BVH triangle `k` (its object-space corners,

@@ -193,6 +193,7 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/env.wgsl",
     "../../../shaders/lib/env_visibility.wgsl",
     "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/cube.wgsl",
     "../../../shaders/lib/shadow.wgsl",
     "../../../shaders/lib/punctual.wgsl",
     "direct.wgsl",

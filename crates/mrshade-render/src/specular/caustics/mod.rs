@@ -422,6 +422,7 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "../../../shaders/lib/brdf.wgsl",
     "../../../shaders/lib/sampling.wgsl",
     "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/cube.wgsl",
     "../../../shaders/lib/shadow.wgsl",
     "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
