@@ -47,7 +47,8 @@ impl Renderer {
             deform.record(rec);
         }
         let raster = &self.rasterizer;
-        // 1. geometry, lights ─▶ shadow maps, real-only and virtual-only casters per light.
+        // 1. geometry, lights ─▶ shadow maps, real-only and virtual-only casters per light
+        //    (when either changed).
         self.shadows.record(rec, raster);
         // 2. geometry, camera ─▶ G-buffer: visibility, then depth + motion, normals,
         //    materials, real/virtual flags.
@@ -91,6 +92,9 @@ impl Renderer {
             self.shadows.set_layers(queue, &self.scene.shadow_layers);
         }
         self.scene.geometry.begin_frame(queue);
+        if self.scene.geometry.moved() {
+            self.shadows.geometry_changed();
+        }
         let (w, h) = self.internal_size();
         let unjittered = inputs.camera.clip_from_world(w, h);
         let camera_moved = self.previous_clip_from_world.is_some_and(|p| p != unjittered);

@@ -155,6 +155,11 @@ pub struct BenchArgs {
     /// Frames rendered first and not measured (pipelines compile, caches fill).
     #[arg(long, default_value_t = 30)]
     pub warmup: u32,
+    /// Turn the first virtual object a little every frame, so that what depends on where the
+    /// objects are (shadow maps, impostors, ISM points) is drawn again each frame, as with a
+    /// moving insert. By default a still scene keeps them.
+    #[arg(long)]
+    pub moving: bool,
     /// Write the results as JSON here.
     #[arg(long, value_name = "OUT.json")]
     pub json: Option<PathBuf>,

@@ -94,6 +94,14 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         None => Vec::new(),
     };
     let still = FrameInputs::camera(renderer.session_camera());
+    // --moving: the first virtual instance and its rest transform; every instance's transform.
+    let mut placed: Vec<glam::Mat4> = session.scene.instances.iter().map(|i| i.world_from_object).collect();
+    let moving = if args.moving {
+        let k = session.scene.instances.iter().position(|i| i.realness == mrshade_core::flags::Realness::Virtual);
+        Some(k.map(|k| (k, placed[k])).ok_or_else(|| anyhow::anyhow!("--moving: the scene has no virtual object"))?)
+    } else {
+        None
+    };
     log.info(format!(
         "bench {w}×{h}, {} warm-up + {} measured frames{}",
         args.warmup,
@@ -109,7 +117,13 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     let mut processed = 0;
     let started = std::time::Instant::now();
     for i in 0..total {
-        let inputs = if footage.is_empty() { still } else { footage[i as usize % footage.len()].inputs() };
+        let mut inputs = if footage.is_empty() { still } else { footage[i as usize % footage.len()].inputs() };
+        if let Some((k, rest)) = moving {
+            // Back and forth by 0.01 rad about the object's own vertical axis.
+            let turn = if i % 2 == 0 { 0.01 } else { -0.01 };
+            placed[k] = rest * glam::Mat4::from_rotation_y(turn);
+            inputs.instances = Some(&placed);
+        }
         let submit = std::time::Instant::now();
         let submitted = renderer.render(&ctx, &mut profiler, &inputs)?;
         if i >= args.warmup as u64 {

@@ -1,6 +1,8 @@
 //! Shadow pass: for every light, the depth of real casters and of virtual casters in separate
 //! layers of one buffer (Knecht §2.7, Eq. 5.1–5.3: `V_r`, `V_v`), drawn by the compute
-//! rasteriser. Inputs: geometry, the layers of `pack_lights`. Output: the layer buffer.
+//! rasteriser. Inputs: geometry, the layers of `pack_lights`. Output: the layer buffer. The
+//! maps depend on the geometry and the lights only: they are drawn again when either changed,
+//! not for a camera that moves through a still scene.
 
 use crate::raster::{Casters, RasterView, Rasterizer};
 use crate::scene_gpu::{Geometry, ShadowLayer};
@@ -14,6 +16,8 @@ pub struct ShadowPass {
     /// All layers of all lights: `layers × resolution²` packed `u64` texels (reversed depth in
     /// the high word).
     pub maps: wgpu::Buffer,
+    /// The maps no longer show the casters (at first, and after a light or an instance moved).
+    stale: bool,
 }
 
 impl ShadowPass {
@@ -52,7 +56,7 @@ impl ShadowPass {
                 )
             })
             .collect();
-        Self { views, maps }
+        Self { views, maps, stale: true }
     }
 
     /// Moves the layers' projections to `layers` (moving lights); the next frame draws them.
@@ -60,12 +64,19 @@ impl ShadowPass {
         for (view, layer) in self.views.iter_mut().zip(layers) {
             view.set_clip_from_world(queue, layer.clip_from_world);
         }
+        self.stale = true;
     }
 
-    /// Rasterises every layer's casters.
-    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
-        if !self.views.is_empty() {
+    /// The casters moved or deformed: the next frame draws the maps again.
+    pub fn geometry_changed(&mut self) {
+        self.stale = true;
+    }
+
+    /// Rasterises every layer's casters, if they changed since the last time.
+    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        if self.stale && !self.views.is_empty() {
             rasterizer.record(rec, Self::LABEL, &self.views);
         }
+        self.stale = false;
     }
 }
