@@ -515,7 +515,8 @@ impl SpecularStage {
         let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
         rec.compute(Self::TRACE_LABEL, |pass| {
             groups(pass, &self.trace, &self.trace_groups);
-            pass.dispatch_workgroups(w, h, 1);
+            // z: the reflection and the refraction branch of each pixel (trace.wgsl).
+            pass.dispatch_workgroups(w, h, 2);
         });
         if let Some(caustics) = &self.caustics {
             caustics.record(rec, &self.caustic_buffer);

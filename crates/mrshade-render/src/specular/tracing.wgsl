@@ -138,54 +138,40 @@ fn march_slices(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
     var prev_t = span.x;
     var prev_s = 0.0;
     var prev_valid = false;
-    // The steps are read MARCH_BATCH at a time, their fetches issued together: a march is one
-    // chain of dependent reads per ray, and its latency, not the GPU's throughput, bounds the
-    // trace and the photon passes. Same result; up to MARCH_BATCH − 1 reads past the hit.
-    for (var base = 0u; base <= steps; base += MARCH_BATCH) {
-        var batch: array<SliceSample, MARCH_BATCH>;
-        for (var j = 0u; j < MARCH_BATCH; j++) {
-            batch[j] = slice_sample(ray, span.x + step * f32(min(base + j, steps)));
-        }
-        for (var j = 0u; j < MARCH_BATCH; j++) {
-            let i = base + j;
-            if (i > steps) { break; }
-            let t = span.x + step * f32(i);
-            let c = batch[j];
-            if (c.texel.x == 0u) {
-                prev_valid = false;
-                prev_t = t;
-                continue;
-            }
-            if (prev_valid && (c.behind >= 0.0) != (prev_s >= 0.0)) {
-                var a = prev_t;
-                var b = t;
-                var triangle = c.texel.x;
-                for (var k = 0u; k < params.steps.z; k++) {
-                    let mid = 0.5 * (a + b);
-                    let m = slice_sample(ray, mid);
-                    let sm = select(prev_s, m.behind, m.texel.x != 0u);
-                    if ((sm >= 0.0) == (c.behind >= 0.0)) {
-                        b = mid;
-                        if (m.texel.x != 0u) { triangle = m.texel.x; }
-                    } else {
-                        a = mid;
-                    }
-                }
-                let h = intersect(triangle - 1u, origin, dir);
-                if (h.t > 0.0 && abs(h.t - b) <= 2.0 * step + 1e-4 + cube_texel_depth(imp, origin + dir * b)) {
-                    return vec2f(f32(triangle), h.t);
-                }
-            }
-            prev_valid = true;
-            prev_s = c.behind;
+    for (var i = 0u; i <= steps; i++) {
+        let t = span.x + step * f32(i);
+        let c = slice_sample(ray, t);
+        if (c.texel.x == 0u) {
+            prev_valid = false;
             prev_t = t;
+            continue;
         }
+        if (prev_valid && (c.behind >= 0.0) != (prev_s >= 0.0)) {
+            var a = prev_t;
+            var b = t;
+            var triangle = c.texel.x;
+            for (var j = 0u; j < params.steps.z; j++) {
+                let mid = 0.5 * (a + b);
+                let m = slice_sample(ray, mid);
+                let sm = select(prev_s, m.behind, m.texel.x != 0u);
+                if ((sm >= 0.0) == (c.behind >= 0.0)) {
+                    b = mid;
+                    if (m.texel.x != 0u) { triangle = m.texel.x; }
+                } else {
+                    a = mid;
+                }
+            }
+            let h = intersect(triangle - 1u, origin, dir);
+            if (h.t > 0.0 && abs(h.t - b) <= 2.0 * step + 1e-4 + cube_texel_depth(imp, origin + dir * b)) {
+                return vec2f(f32(triangle), h.t);
+            }
+        }
+        prev_valid = true;
+        prev_s = c.behind;
+        prev_t = t;
     }
     return vec2f(0.0);
 }
-
-// Linear steps of a march whose reads are issued together.
-const MARCH_BATCH: u32 = 4u;
 
 // How far a cube's texel may put a surface off the ray at `x` (four texels' width there, 92°
 // over the side): a thin object's span is marched in tiny steps, finer than the texels.
@@ -435,9 +421,11 @@ fn object_triangle_t(k: u32, o: vec3f, d: vec3f) -> f32 {
 }
 
 // Traversal stacks in workgroup memory, one per invocation of the 8×8 workgroups (a dynamically
-// indexed private array would live in slow local memory). `lane` is set by the entry point.
+// indexed private array would live in slow local memory), entry-major: the invocations' entries
+// at one depth are neighbouring words, in different memory banks (lane-major, 24 words apart,
+// eight invocations shared a bank). `lane` is set by the entry point.
 const STACK: u32 = 24u;
-var<workgroup> stacks: array<array<u32, STACK>, 64>;
+var<workgroup> stacks: array<array<u32, 64>, STACK>;
 var<private> lane: u32;
 
 // The nearest triangle of `instance` on the world ray past `t_min`: (triangle + 1, t). The
@@ -450,30 +438,39 @@ fn trace_interior(instance: u32, origin: vec3f, dir: vec3f, t_min: f32) -> vec2f
     let o = (it.object_from_world * vec4f(origin, 1.0)).xyz;
     let d = (it.object_from_world * vec4f(dir, 0.0)).xyz;
     let inv_d = 1.0 / select(d, vec3f(1e-30), abs(d) < vec3f(1e-30));
-    var top = 1u;
-    stacks[lane][0] = it.info.x;
-    while (top > 0u) {
-        top -= 1u;
-        let node = bvh_nodes[stacks[lane][top]];
+    // The nearer child is descended into at once (its box already read), the farther one
+    // pushed; a missed child (−1) is dropped.
+    var node = bvh_nodes[it.info.x];
+    var top = 0u;
+    loop {
         if (node.count == 0u) {
             let a = bvh_nodes[node.first];
             let b = bvh_nodes[node.first + 1u];
             let ta = box_entry(o, inv_d, a.min, a.max, best.y);
             let tb = box_entry(o, inv_d, b.min, b.max, best.y);
-            // Push the farther child first; a missed child (−1) is not pushed.
             let a_first = ta >= 0.0 && (tb < 0.0 || ta <= tb);
-            let near = select(node.first + 1u, node.first, a_first);
             let far = select(node.first, node.first + 1u, a_first);
             let t_near = select(tb, ta, a_first);
             let t_far = select(ta, tb, a_first);
-            if (t_far >= 0.0 && top < STACK) { stacks[lane][top] = far; top += 1u; }
-            if (t_near >= 0.0 && top < STACK) { stacks[lane][top] = near; top += 1u; }
-            continue;
+            if (t_near >= 0.0) {
+                if (t_far >= 0.0 && top < STACK) { stacks[top][lane] = far; top += 1u; }
+                if (a_first) { node = a; } else { node = b; }
+                continue;
+            }
+        } else {
+            for (var k = node.first; k < node.first + node.count; k++) {
+                let t = object_triangle_t(k, o, d);
+                if (t > t_min && t < best.y) { best = vec2f(f32(bvh_triangles[k] + 1u), t); }
+            }
         }
-        for (var k = node.first; k < node.first + node.count; k++) {
-            let t = object_triangle_t(k, o, d);
-            if (t > t_min && t < best.y) { best = vec2f(f32(bvh_triangles[k] + 1u), t); }
+        // The next pushed node whose box is still nearer than the best hit.
+        var next = false;
+        while (top > 0u && !next) {
+            top -= 1u;
+            node = bvh_nodes[stacks[top][lane]];
+            next = box_entry(o, inv_d, node.min, node.max, best.y) >= 0.0;
         }
+        if (!next) { break; }
     }
     return best;
 }

@@ -116,21 +116,29 @@ fn land(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self:
     return out;
 }
 
+// One photon of one kind per invocation (z = source · PHOTON_KINDS + kind): 0 reflected and
+// 1 refracted through the whole world (L_rv), 2 and 3 the same through the real-only world
+// (L_r, only for paths whose light and caster are real). The four kinds of a texel draw the
+// same random choices (their keys are the kind-0 and kind-1 indices), so that a path without
+// virtual parts lands alike in both worlds.
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
     lane = local;
     let res = caustics.info.x;
-    if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
+    let source = id.z / PHOTON_KINDS;
+    let kind = id.z % PHOTON_KINDS;
+    if (any(id.xy >= vec2u(res)) || source >= caustics.info.y) { return; }
+    let slot = photon_index(source, kind, id.xy);
+    photons[slot] = Photon(vec4f(0.0), vec4f(0.0), vec4f(0.0));
     let from_probe = caustics.info.z == 1u;
     var light: Light;
-    if (from_probe) { light = probe_light(id.z, caustics.info.y); } else { light = lights[id.z]; }
-    for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
-        photons[photon_index(id.z, kind, id.xy)] = Photon(vec4f(0.0), vec4f(0.0), vec4f(0.0));
-    }
+    if (from_probe) { light = probe_light(source, caustics.info.y); } else { light = lights[source]; }
     let e = emit(light, id.xy);
     let first = first_caster(e.origin, e.dir);
     if (first.x == 0.0) { return; }
     let h = intersect(u32(first.x) - 1u, e.origin, e.dir);
+    let real_world = kind >= 2u;
+    if (real_world && !(light.direction_real.w > 0.5 && instance_is_real(h.instance))) { return; }
     let m = materials[instances[h.instance].info.x];
     let n = facing_normal(h, -e.dir);
     let incident = light_incident(light, h.position);
@@ -138,43 +146,38 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     // irradiance × area.
     var power = incident.radiance * e.measure;
     if (light.info.x != LIGHT_DIRECTIONAL) { power *= incident.distance * incident.distance; }
-    // The punctual lights' shadow maps; the probe's light reaches its casters unoccluded.
-    var v_r = 1.0;
-    var v_v = 1.0;
+    // The punctual lights' shadow maps (the real-only world sees only real casters); the
+    // probe's light reaches its casters unoccluded.
+    var visible = 1.0;
     if (!from_probe) {
-        v_r = shadow_visibility(light, light.info.y, h.position, n);
-        v_v = shadow_visibility(light, light.info.w, h.position, n);
+        visible = shadow_visibility(light, light.info.y, h.position, n);
+        if (!real_world) { visible = min(visible, shadow_visibility(light, light.info.w, h.position, n)); }
     }
-    let all_real = light.direction_real.w > 0.5 && instance_is_real(h.instance);
-
     let cos_i = max(dot(n, -e.dir), 0.0);
     let metallic = m.params.x;
-    let f0 = material_f0(m);
-    let reflectance = schlick(f0, mix(m.dielectric.a, 1.0, metallic), cos_i);
-    // A glossy caster reflects each photon into its GGX lobe: one microfacet per photon and
-    // frame, as the camera's rays (stills and temporal smoothing average them): a rough
-    // metal's caustic of a lamp is a glow, not a mirror's sharp image.
-    let roughness = clamp(m.params.y, 0.0, 1.0);
-    let lobe_seed = hash_u32(photon_index(id.z, 0u, id.xy) * 2654435761u ^ u32(frame.exposure_env.w) * 83492791u);
-    var reflected = reflect(e.dir, microfacet_normal(n, -e.dir, roughness, lobe_seed));
-    if (dot(reflected, n) <= 0.0) { reflected = reflect(e.dir, n); }
-    let concave = interiors[h.instance].info.y == 1u;
-    let rv = min(v_r, v_v);
-    // The probe's light reflected by a traced surface lands as photons too; `dir`'s
-    // environment-bounce VPLs leave traced surfaces out (bounce.wgsl), so it is counted once.
-    photons[photon_index(id.z, 0u, id.xy)] = land(h.position, reflected, h.instance, false, concave, power * reflectance * rv);
-    if (all_real) {
-        photons[photon_index(id.z, 2u, id.xy)] = land(h.position, reflected, h.instance, true, concave, power * reflectance * v_r);
+    if ((kind & 1u) == 0u) {
+        let f0 = material_f0(m);
+        let reflectance = schlick(f0, mix(m.dielectric.a, 1.0, metallic), cos_i);
+        // A glossy caster reflects each photon into its GGX lobe: one microfacet per photon
+        // and frame, as the camera's rays (stills and temporal smoothing average them): a
+        // rough metal's caustic of a lamp is a glow, not a mirror's sharp image.
+        let roughness = clamp(m.params.y, 0.0, 1.0);
+        let lobe_seed = hash_u32(photon_index(source, 0u, id.xy) * 2654435761u ^ u32(frame.exposure_env.w) * 83492791u);
+        var reflected = reflect(e.dir, microfacet_normal(n, -e.dir, roughness, lobe_seed));
+        if (dot(reflected, n) <= 0.0) { reflected = reflect(e.dir, n); }
+        let concave = interiors[h.instance].info.y == 1u;
+        // The probe's light reflected by a traced surface lands as photons too; `dir`'s
+        // environment-bounce VPLs leave traced surfaces out (bounce.wgsl), so it is counted
+        // once.
+        photons[slot] = land(h.position, reflected, h.instance, real_world, concave, power * reflectance * visible);
+        return;
     }
     let transmission = m.transmission.x * (1.0 - metallic);
     if (transmission <= 0.0) { return; }
     let ior = max(m.transmission.y, 1.0);
-    let exit = traced_exit(h.instance, h.position, e.dir, n, ior, photon_index(id.z, 1u, id.xy));
+    let exit = traced_exit(h.instance, h.position, e.dir, n, ior, photon_index(source, 1u, id.xy));
     let through = power * transmission * (1.0 - fresnel_ior(ior, cos_i)) * exit_transmittance(m, m.base_color.rgb, exit, ior);
-    photons[photon_index(id.z, 1u, id.xy)] = land(exit.position, exit.dir, h.instance, false, true, through * rv);
-    if (all_real) {
-        photons[photon_index(id.z, 3u, id.xy)] = land(exit.position, exit.dir, h.instance, true, true, through * v_r);
-    }
+    photons[slot] = land(exit.position, exit.dir, h.instance, real_world, true, through * visible);
 }
 
 // World distance to the photon's landed neighbour `dx`, `dy` texels away (0 if none).

@@ -300,14 +300,17 @@ impl Caustics {
     /// Photon tracing, then splatting into both levels of `buffer`.
     pub fn record(&self, rec: &mut Recorder, buffer: &CausticBuffer) {
         rec.compute(Self::PHOTONS_LABEL, |pass| {
-            for pipeline in [&self.emit, &self.size] {
+            // cs_main traces each kind of photon in a thread of its own (the chain of one
+            // photon's reads, not the GPU's throughput, bounds it); cs_size takes all four.
+            for (pipeline, kinds) in [(&self.emit, PHOTON_KINDS as u32), (&self.size, 1)] {
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(1, &self.scene_group, &[]);
                 pass.set_bind_group(3, &self.probe_group, &[]);
                 for g in &self.groups {
                     pass.set_bind_group(0, &g.emit_groups[0], &[]);
                     pass.set_bind_group(2, &g.emit_groups[1], &[]);
-                    pass.dispatch_workgroups(g.resolution.div_ceil(8), g.resolution.div_ceil(8), g.sources);
+                    let side = g.resolution.div_ceil(8);
+                    pass.dispatch_workgroups(side, side, g.sources * kinds);
                 }
             }
         });
