@@ -115,6 +115,9 @@ impl Renderer {
         let gbuffer_pass =
             GBufferPass::new(ctx, &frame, &uniforms, &rasterizer, &scene.geometry, &scene.materials, &gbuffer);
         let radiance = radiance_targets(device, internal);
+        // The punctual lights' photons: the specular stage traces them, `dir` places caustic
+        // VPLs where they landed.
+        let light_photons = crate::specular::caustics::LightPhotons::new(ctx, session);
         let method = (crate::methods::entry(settings.method).build)(&MethodInputs {
             ctx,
             session,
@@ -124,6 +127,7 @@ impl Renderer {
             gbuffer: &gbuffer,
             radiance: &radiance,
             internal_size: internal,
+            light_photons: light_photons.as_ref(),
         });
         let direct =
             DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, method.indirect(), &radiance);
@@ -158,6 +162,7 @@ impl Renderer {
             camera_visibility: &gbuffer_pass.camera.target,
             radiance: &radiance,
             point_light: method.point_light(),
+            light_photons: light_photons.as_ref(),
             photo: &photo.photo,
             composite_params: &composite.params,
             output: &specular_light,

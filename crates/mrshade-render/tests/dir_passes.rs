@@ -231,3 +231,68 @@ fn a_bounce_ray_that_meets_virtual_geometry_first_goes_on_to_a_real_surface_as_a
     let share = vpl3 as f32 / (vpl3 + virtual_hits) as f32;
     assert!((0.25..=0.75).contains(&share), "VPL3 share of the blocked rays {share}");
 }
+
+/// Caustic VPLs (reflections spec §2.18): a real spot aimed at a virtual mirror on the floor
+/// sends its whole cone up onto a real wall. The RSM places no VPL on the mirror; the caustic
+/// source's VPLs lie where the reflected beam meets the wall (mirror image of the spot
+/// through the floor plane, on to the wall), face the room, route to `L_rv` only (the mirror
+/// is virtual: r, not x̄) and together carry the cone's power (white metal: F = 1).
+#[test]
+fn caustic_vpls_sit_where_a_mirror_sends_a_spot_with_its_power() {
+    let (spot, mirror, wall_x) = (Vec3::new(1.0, 0.3, 0.0), Vec3::new(0.3, 0.002, 0.0), -0.5f32);
+    let (outer, inner, intensity) = (0.05f32, 0.04f32, 20.0f32);
+    let mut s = Setup::top_down(16);
+    s.top_toml = "method = \"dir\"\n".into();
+    s.extra_toml = "[output]\nframes = 3\n[dir]\nvpl_count = 64\nbounce = \"off\"\ndistribution = \"equal\"\n\
+                    [caustics]\nphoton_resolution = 64\n"
+        .into();
+    s.plane(2.0, 0.0, 0.5, true);
+    let wall_material = s.gltf.material(mrshade_testkit::gltf::lambert("wall", [0.5; 3]));
+    let wall = s.gltf.mesh(&mrshade_testkit::gltf::quad(0.6), Some(wall_material), true);
+    s.gltf.node(json!({"name": "wall", "mesh": wall, "translation": [wall_x, 0.6, 0.0],
+        "rotation": mrshade_testkit::gltf::quat([0.0, 0.0, 1.0], -std::f32::consts::FRAC_PI_2), "extras": {"real": true}}));
+    let chrome = s.gltf.material(json!({"name": "mirror",
+        "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0, "roughnessFactor": 0.0}}));
+    let m = s.gltf.mesh(&mrshade_testkit::gltf::quad(0.15), Some(chrome), true);
+    s.gltf.node(json!({"name": "mirror", "mesh": m, "translation": mirror.to_array(), "extras": {"real": false}}));
+    let aim = (mirror - spot).normalize();
+    let l = s.gltf.light(json!({"type": "spot", "intensity": intensity,
+        "spot": {"innerConeAngle": inner, "outerConeAngle": outer}}));
+    s.gltf.node(json!({"name": "lamp", "translation": spot.to_array(),
+        "rotation": glam::Quat::from_rotation_arc(Vec3::NEG_Z, aim).to_array(),
+        "extensions": {"KHR_lights_punctual": {"light": l}}, "extras": {"real": true}}));
+    let r = s.render();
+    let vpls = r.renderer.method_as::<DirMethod>().expect("dir method").read_vpls(&r.ctx).unwrap();
+    // Sources: the lamp (0), then the caustics (1).
+    let on_mirror = |v: &&GpuVpl| (v.position.y - mirror.y).abs() < 1e-3 && (v.position.x - mirror.x).abs() < 0.15;
+    assert!(
+        !surface_vpls(&vpls).iter().filter(|v| v.info.y == 0).any(on_mirror),
+        "the RSM places no VPL on the mirror"
+    );
+    let caustic: Vec<&GpuVpl> = surface_vpls(&vpls).into_iter().filter(|v| v.info.y == 1).collect();
+    assert!(caustic.len() >= 24, "{} of the 32 caustic slots hold a VPL", caustic.len());
+    // The beam's axis, reflected at the floor plane of the mirror, meets the wall here.
+    let reflected = Vec3::new(aim.x, -aim.y, aim.z);
+    let hit = mirror + reflected * ((wall_x - mirror.x) / reflected.x);
+    // The cone's footprint there: its radius over the whole path, stretched by the incidence.
+    let footprint = outer.tan() * (spot.distance(mirror) + mirror.distance(hit)) / reflected.x.abs() + 0.01;
+    for v in &caustic {
+        let p = v.position.truncate();
+        assert!((p.x - wall_x).abs() < 1e-3 && p.distance(hit) < footprint, "caustic VPL at {p}, beam at {hit}");
+        assert!((v.normal.truncate() - Vec3::X).length() < 1e-3, "it faces the room: {:?}", v.normal);
+        assert_eq!(v.info.x, REAL, "on the real wall via the virtual mirror: r, not x̄");
+        assert_eq!(v.info.w, 2, "light → mirror → wall");
+    }
+    // The cone's power: I · 2π ∫ falloff(θ) sin θ dθ, glTF's smooth falloff.
+    let (cos_outer, cos_inner) = (outer.cos(), inner.cos());
+    let steps = 4000;
+    let power: f32 = (0..steps)
+        .map(|k| {
+            let theta = (k as f32 + 0.5) / steps as f32 * outer;
+            let falloff = ((theta.cos() - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0).powi(2);
+            intensity * 2.0 * std::f32::consts::PI * falloff * theta.sin() * outer / steps as f32
+        })
+        .sum();
+    let carried: f32 = caustic.iter().map(|v| v.power.y).sum::<f32>() * 32.0 / caustic.len() as f32;
+    assert!(rel(carried, power) < 0.2, "the caustic VPLs carry {carried} W of the cone's {power} W");
+}

@@ -50,6 +50,9 @@ pub struct MethodInputs<'a> {
     pub radiance: &'a Differential<Target>,
     /// Internal shading size.
     pub internal_size: (u32, u32),
+    /// The punctual lights' photons (the specular stage's caustics), if they shoot any: `dir`
+    /// turns them into caustic VPLs (reflections spec §2.18).
+    pub light_photons: Option<&'a crate::specular::caustics::LightPhotons>,
 }
 
 /// What changed since the previous frame, for a method's per-frame preparation.

@@ -75,6 +75,8 @@ pub struct SpecularInputs<'a> {
     pub radiance: &'a Differential<Target>,
     /// The method's light at any point, which off-screen hit surfaces are shaded with.
     pub point_light: Option<PointLight<'a>>,
+    /// The punctual lights' photon G-buffer (made before the method, which reads it too).
+    pub light_photons: Option<&'a caustics::LightPhotons>,
     /// The photo at the output size.
     pub photo: &'a Target,
     /// The composite's α parameters.
@@ -292,6 +294,7 @@ impl SpecularStage {
                 shadow_maps: inputs.shadow_maps,
                 impostors: [&impostors.table, &owners, &impostors.texels],
                 interiors: [&interiors.table, &interiors.nodes, &interiors.triangles, &interiors.corners],
+                light_photons: inputs.light_photons,
                 depth_motion: &inputs.gbuffer.depth_motion,
                 normal_roughness: &inputs.gbuffer.normal_roughness,
             },

@@ -71,8 +71,17 @@ pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
 impl DirMethod {
     /// Builds every pass for the session of `inputs`.
     pub fn new(inputs: &MethodInputs) -> Self {
-        let MethodInputs { ctx, session, scene, rasterizer, frame_uniforms, gbuffer, radiance, internal_size } =
-            *inputs;
+        let MethodInputs {
+            ctx,
+            session,
+            scene,
+            rasterizer,
+            frame_uniforms,
+            gbuffer,
+            radiance,
+            internal_size,
+            light_photons,
+        } = *inputs;
         let settings = &session.settings.dir;
         let (center, radius) = match session.scene.bounds() {
             Some((lo, hi)) => ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3)),
@@ -85,9 +94,10 @@ impl DirMethod {
             &scene.shadow_layers,
             settings.rsm_resolution,
             session.settings.shadows.resolution,
+            light_photons.is_some(),
         );
         let ism_resources = IsmResources::new(ctx, &session.scene, &scene.geometry, settings, center, radius);
-        let vpl = VplPass::new(ctx, session, settings, scene, &rsm, &ism_resources, center, radius);
+        let vpl = VplPass::new(ctx, session, settings, scene, &rsm, &ism_resources, light_photons, center, radius);
         let ism = IsmPass::new(ctx, &ism_resources, &scene.geometry, &vpl.vpls);
         let d_min = settings.clamp_distance * radius;
         let interleaved = IndirectLight::new(&ctx.device, "indirect/interleaved", internal_size);

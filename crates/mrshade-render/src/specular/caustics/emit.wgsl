@@ -112,7 +112,7 @@ fn land(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self:
     if (is_traced(materials[instances[h.instance].info.x])) { return out; }
     out.position = vec4f(end.position, 1.0);
     out.normal = vec4f(facing_normal(h, -end.dir), 0.0);
-    out.power = vec4f(power * end.weight, 0.0);
+    out.power = vec4f(power * end.weight, bitcast<f32>(end.triangle));
     return out;
 }
 

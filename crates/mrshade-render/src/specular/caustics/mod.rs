@@ -10,6 +10,7 @@ use mrshade_core::Differential;
 use mrshade_core::settings::CausticsSettings;
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
+use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
 
 /// Mirrors `CausticParams` in photons.wgsl.
@@ -30,7 +31,7 @@ pub struct CausticParams {
 /// in levels.wgsl).
 pub const COARSE_LEVEL_FACTOR: u32 = 8;
 
-/// Bytes of one photon (`Photon` in photons.wgsl).
+/// Bytes of one photon (`Photon` in shaders/lib/photon.wgsl).
 pub const PHOTON_BYTES: u64 = 48;
 /// Photons per light and photon-map texel: reflected and refracted, of `L_rv` and of `L_r`.
 pub const PHOTON_KINDS: u64 = 4;
@@ -51,6 +52,8 @@ pub struct CausticInputs<'a> {
     pub impostors: [&'a wgpu::Buffer; 3],
     /// Interiors table, BVH nodes, BVH triangles, BVH corners.
     pub interiors: [&'a wgpu::Buffer; 4],
+    /// The punctual lights' photon G-buffer, made before the stage.
+    pub light_photons: Option<&'a LightPhotons>,
     /// The camera's depth and normal G-buffer targets.
     pub depth_motion: &'a Target,
     /// See `depth_motion`.
@@ -72,8 +75,61 @@ struct PhotonGroup {
     emit_groups: [wgpu::BindGroup; 2],
     /// The indirect draw of each level (`SplatDraw` in photons.wgsl).
     draws: wgpu::Buffer,
+    /// Where the lights' group copies its draws for the next frame's caustic VPLs.
+    landed: Option<wgpu::Buffer>,
     /// Per level.
     splat_groups: [wgpu::BindGroup; 2],
+}
+
+/// The photon G-buffer of the punctual lights (`Photon` in shaders/lib/photon.wgsl, per light,
+/// kind and texel) and its lists of landed photons, made before the method and the specular
+/// stage: the stage's photon pass fills them, and `dir` places its caustic VPLs where the last
+/// frame's photons landed (reflections spec §2.18).
+pub struct LightPhotons {
+    /// The photons.
+    pub buffer: wgpu::Buffer,
+    /// The landed photons' indices, per caustic level (level × slots + i).
+    pub list: wgpu::Buffer,
+    /// Last frame's landed photons per level (the splat draws' vertex counts, six per photon:
+    /// `SplatDraw` × 2), copied after the photon pass.
+    pub landed: wgpu::Buffer,
+    /// Photon slots: lights × kinds × resolution².
+    pub slots: u32,
+    /// Side of each light's photon map.
+    pub resolution: u32,
+}
+
+impl LightPhotons {
+    /// The buffers, when the session's punctual lights shoot photons: caustics and the
+    /// specular stage on, a light, and a rigid instance of a traced material to start on.
+    pub fn new(ctx: &GpuContext, session: &Session) -> Option<Self> {
+        let (scene, settings) = (&session.scene, &session.settings);
+        let caster = scene.instances.iter().any(|i| {
+            let p = &scene.primitives[i.primitive];
+            let m = &scene.materials[p.material];
+            settings.specular.traces(m.metallic, m.roughness, m.transmission) && !p.is_deformable()
+        });
+        if !settings.caustics.enabled || scene.lights.is_empty() || !caster {
+            return None;
+        }
+        let resolution = settings.caustics.photon_resolution;
+        let slots = scene.lights.len() as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64;
+        let buffer = |label: &str, size: u64, usage| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        Some(Self {
+            buffer: buffer("specular/photons_lights", slots * PHOTON_BYTES, wgpu::BufferUsages::COPY_SRC),
+            list: buffer("specular/photons_lights/splat_list", slots * SPLAT_LIST_BYTES, wgpu::BufferUsages::empty()),
+            landed: buffer("specular/photons_lights/landed", 32, wgpu::BufferUsages::COPY_DST),
+            slots: slots as u32,
+            resolution,
+        })
+    }
 }
 
 /// The photon tracing and splatting that fill the caustic buffer.
@@ -208,22 +264,32 @@ impl Caustics {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
             let slots = sources as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64;
-            let photons = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: slots * PHOTON_BYTES,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let list = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(&format!("{label}/splat_list")),
-                size: slots * SPLAT_LIST_BYTES,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            });
+            // The lights' photons live in `LightPhotons` (dir reads them too).
+            let shared = inputs.light_photons.filter(|_| from_probe == 0);
+            let (photons, list) = match shared {
+                Some(lights) => (lights.buffer.clone(), lights.list.clone()),
+                None => (
+                    device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(label),
+                        size: slots * PHOTON_BYTES,
+                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                        mapped_at_creation: false,
+                    }),
+                    device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(&format!("{label}/splat_list")),
+                        size: slots * SPLAT_LIST_BYTES,
+                        usage: wgpu::BufferUsages::STORAGE,
+                        mapped_at_creation: false,
+                    }),
+                ),
+            };
             let draws = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label}/splat_draws")),
                 contents: bytemuck::cast_slice(&EMPTY_DRAWS),
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::INDIRECT
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
             });
             let emit_groups = [
                 bind::group(
@@ -259,6 +325,7 @@ impl Caustics {
                 sources,
                 resolution,
                 from_probe,
+                landed: shared.map(|l| l.landed.clone()),
                 params,
                 photons,
                 emit_groups,
@@ -314,6 +381,11 @@ impl Caustics {
                 }
             }
         });
+        for g in &self.groups {
+            if let Some(landed) = &g.landed {
+                rec.encoder.copy_buffer_to_buffer(&g.draws, 0, landed, 0, 32);
+            }
+        }
         fn clear(t: &Target) -> Option<wgpu::RenderPassColorAttachment<'_>> {
             Some(wgpu::RenderPassColorAttachment {
                 view: &t.view,
@@ -430,6 +502,7 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
     "../tracing.wgsl",
+    "../../../shaders/lib/photon.wgsl",
     "photons.wgsl",
     "emit.wgsl",
 );
@@ -437,6 +510,7 @@ pub const PHOTONS_SHADER: &str = wgsl!(
 pub const SPLAT_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/sampling.wgsl",
+    "../../../shaders/lib/photon.wgsl",
     "photons.wgsl",
     "levels.wgsl",
     "splat.wgsl",

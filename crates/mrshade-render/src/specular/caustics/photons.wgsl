@@ -25,18 +25,6 @@ struct CausticParams {
     splat: vec4f,
 }
 
-struct Photon {
-    // where it landed; w: 1 if it did
-    position: vec4f,
-    // the receiver's normal (facing the photon)
-    normal: vec4f,
-    // power, W (rgb)
-    power: vec4f,
-}
-
-// Per light and texel: the reflected and the refracted photon of L_rv, then those of L_r.
-const PHOTON_KINDS: u32 = 4u;
-
 // Photon slots of the group: sources × kinds × resolution².
 fn photon_slots() -> u32 {
     return caustics.info.x * caustics.info.x * caustics.info.y * PHOTON_KINDS;

@@ -58,6 +58,7 @@ impl RsmPass {
         layers: &[ShadowLayer],
         resolution: u32,
         shadow_resolution: u32,
+        caustic_vpls: bool,
     ) -> Self {
         let device = &ctx.device;
         let res = resolution;
@@ -105,7 +106,7 @@ impl RsmPass {
         world_from_clip.resize(world_from_clip.len().max(1), glam::Mat4::IDENTITY);
         layer_light.resize(layer_light.len().max(1), 0);
         let params = RsmParams {
-            size: UVec4::new(res, layers.len() as u32, 0, 0),
+            size: UVec4::new(res, layers.len() as u32, caustic_vpls as u32, 0),
             scale: Vec4::new(shadow_resolution as f32 / res as f32, 0.0, 0.0, 0.0),
         };
         let uniform = |label: &str, bytes: &[u8]| {

@@ -18,7 +18,8 @@ struct RsmTexel {
 }
 
 struct RsmParams {
-    // resolution, layer count, unused, unused
+    // resolution, layer count, 1 if traced surfaces take no VPLs (their light flies on as
+    // photons and lands as caustic VPLs, reflections spec §2.18), unused
     size: vec4u,
     // shadow-map resolution / RSM resolution (scales the lights' texel extents), unused…
     scale: vec4f,
@@ -113,7 +114,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     out.position = vec4f(h.position, 1.0);
     out.normal = vec4f(n, clamp(m.params.y * mr.g, 0.0, 1.0));
     out.albedo = vec4f(albedo, metallic);
-    out.power = vec4f(power, luminance(power * reflectance));
+    // A mirror or a glass under caustic VPLs: no VPL here ("placing VPLs directly on their
+    // surface is not a good idea", [P §4.2.2]); its photons carry the light on.
+    let importance = select(luminance(power * reflectance), 0.0, params.size.z == 1u && is_traced(m));
+    out.power = vec4f(power, importance);
     out.material = vec4f((m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0, m.dielectric.a, select(0.0, 1.0, (inst.info.y & SURFACE_REAL) != 0u), length(cross(hx.position - h.position, hy.position - h.position)));
     rsm[index] = out;
 }

@@ -17,14 +17,15 @@ struct VplParams {
     // cos(bounce cone), total real surface area, total virtual surface area, unused
     bounce: vec4f,
     // virtual bounding spheres, 1 if the probe's light reflected by traced surfaces flies as
-    // the specular stage's photons (RenderSettings::probe_caustics), unused…
+    // the specular stage's photons (RenderSettings::probe_caustics), the punctual lights'
+    // photon slots (0: no caustic VPLs), photons per light and kind
     strata: vec4u,
     world_from_probe: mat4x4f,
 }
 
 struct Source {
-    // kind (0 punctual light, 1 environment, 2 multiple bounce, 3 environment bounce), light
-    // index, unused, unused
+    // kind (0 punctual light, 1 environment, 2 multiple bounce, 3 environment bounce, 4 the
+    // punctual lights' caustics), light index, unused, unused
     info: vec4u,
     // weight for the weighted distribution, unused…
     weight: vec4f,
@@ -60,6 +61,7 @@ const SOURCE_LIGHT: u32 = 0u;
 const SOURCE_ENVIRONMENT: u32 = 1u;
 const SOURCE_BOUNCE: u32 = 2u;
 const SOURCE_ENVIRONMENT_BOUNCE: u32 = 3u;
+const SOURCE_CAUSTICS: u32 = 4u;
 
 // The power a VPL sends into the scene (selection weight of bounce sources and of the flux
 // distribution).

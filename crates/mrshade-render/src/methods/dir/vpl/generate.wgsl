@@ -9,6 +9,8 @@
 // - the environment-bounce source (the probe's light reflected once) and the multiple-bounce
 //   source (source VPL of the previous frame chosen ∝ flux, direction ω_o) prepare their
 //   slots; bounce.wgsl places their VPLs.
+// - the punctual lights' caustics (reflections spec §2.18): a photon of the last frame, where
+//   it landed on a diffuse surface after the lights' mirrors and glass.
 
 @group(0) @binding(0) var<uniform> params: VplParams;
 @group(0) @binding(1) var<storage, read> sources: array<Source>;
@@ -24,6 +26,16 @@
 @group(0) @binding(11) var<storage, read_write> bounce_slots: array<BounceSlot>;
 // Inclusive prefix sum of the previous frame's surface-VPL flux (allocate.wgsl).
 @group(0) @binding(12) var<storage, read> flux_cdf: array<f32>;
+// The punctual lights' photons (the specular stage's caustics, last frame) and what their
+// receivers are.
+@group(0) @binding(13) var<storage, read> photons: array<Photon>;
+// The landed photons' indices per caustic level (level × slots + i), and how many landed
+// (six vertices each: the splat draws' vertex counts, x of each vec4).
+@group(0) @binding(14) var<storage, read> photon_list: array<u32>;
+@group(0) @binding(15) var<storage, read> landed: array<vec4u, 2>;
+@group(0) @binding(16) var<storage, read> triangles: array<vec4u>;
+@group(0) @binding(17) var<storage, read> instances: array<Instance>;
+@group(0) @binding(18) var<storage, read> materials: array<Material>;
 
 fn rsm_level_offset(level: u32) -> u32 {
     var offset = 0u;
@@ -158,6 +170,55 @@ fn light_vpl(slot: u32, source: u32, light_index: u32, seq: u32, count: u32) -> 
     if (light.info.x != LIGHT_DIRECTIONAL) { incoming = normalize(light.position.xyz - texel.position.xyz); }
     v.incoming = vec4f(incoming, texel.material.x);
     v.info = vec4u(flags, source, VPL_SURFACE, 1u);
+    return v;
+}
+
+// A caustic VPL (reflections spec §2.18: "the VPLs are placed where caustics appear"; the
+// thesis "places it on the final hit position of the photon"): one of the punctual lights'
+// photons that landed in the last frame (their count lags a frame, as the thesis's photon
+// count does), uniformly; it reflects the photon's power with its receiver's material. Each
+// photon is one path whichever its branch (reflected or refracted), so the paper's Halton
+// choice between the two and its doubled intensity are not needed. Routing (§2.17.5): an
+// L_rv photon whose L_r twin landed alike took an all-real path (x̄, both buffers); otherwise
+// it adds to L_rv only; an L_r photon whose L_rv twin did not land alike is real light that
+// virtual content blocks, a VPL3 (ir: L_r only); a matched L_r photon is its twin's.
+fn caustic_vpl(source: u32, seq: u32, count: u32) -> Vpl {
+    let slots = params.strata.z;
+    let per_kind = params.strata.w;
+    let fine = landed[0].x / 6u;
+    let total = fine + landed[1].x / 6u;
+    if (total == 0u) { return empty_vpl(); }
+    let j = min(u32(halton2(seq) * f32(total)), total - 1u);
+    let index = photon_list[select(slots + j - fine, j, j < fine)];
+    let p = photons[index];
+    if (p.position.w == 0.0) { return empty_vpl(); }
+    let kind = (index / per_kind) % PHOTON_KINDS;
+    let twin = photons[index + ((kind + 2u) % PHOTON_KINDS) * per_kind - kind * per_kind];
+    let alike = twin.position.w != 0.0 && all(twin.position.xyz == p.position.xyz) && all(twin.power.rgb == p.power.rgb);
+    var flags = 0u;
+    if (kind < 2u) {
+        flags = select(0u, VPL_PATH_REAL, alike);
+    } else {
+        if (alike) { return empty_vpl(); }
+        flags = VPL_IR | VPL_PATH_REAL;
+    }
+    let instance = triangles[bitcast<u32>(p.power.w) - 1u].x;
+    let inst = instances[instance];
+    if ((inst.info.y & SURFACE_REAL) != 0u) { flags |= VPL_REAL; }
+    let m = materials[inst.info.x];
+    let metallic = clamp(m.params.x, 0.0, 1.0);
+    // Each landed photon is picked with probability 1 / total.
+    let scale = f32(total) / f32(count);
+    let half = max(p.normal.w, 1e-4);
+    var v: Vpl;
+    v.position = vec4f(p.position.xyz, 4.0 * half * half * scale);
+    v.normal = vec4f(p.normal.xyz, clamp(m.params.y, 0.0, 1.0));
+    v.power = vec4f(p.power.rgb * scale, metallic);
+    // The receiver's material factors (its textures are not read here).
+    v.albedo = vec4f(vpl_base_color(m, m.base_color.rgb, metallic), m.dielectric.a);
+    // The photon's last direction is not kept: its glossy lobe is centred on the normal.
+    v.incoming = vec4f(p.normal.xyz, (m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0);
+    v.info = vec4u(flags, source, VPL_SURFACE, 2u);
     return v;
 }
 
@@ -296,6 +357,8 @@ fn cs_main(@builtin(global_invocation_id) gid: vec3u) {
             v = environment_vpl(source, seq, range.y);
         } else if (kind == SOURCE_ENVIRONMENT_BOUNCE) {
             bounce = setup_environment_bounce(seq, range.y);
+        } else if (kind == SOURCE_CAUSTICS) {
+            v = caustic_vpl(source, seq, range.y);
         } else {
             bounce = setup_bounce(slot, seq, range.y);
         }

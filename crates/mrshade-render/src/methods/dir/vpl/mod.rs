@@ -9,6 +9,7 @@ use crate::methods::dir::ProbePyramid;
 use crate::methods::dir::ism::IsmResources;
 use crate::methods::dir::rsm::RsmPass;
 use crate::scene_gpu::{Geometry, GpuScene};
+use crate::specular::caustics::LightPhotons;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
 use mrshade_core::settings::{BounceMethod, DirSettings, Distribution};
@@ -75,7 +76,8 @@ pub struct VplParams {
     pub modes: UVec4,
     /// cos(cone), real area, virtual area, unused.
     pub bounce: Vec4,
-    /// Virtual bounding spheres, unused….
+    /// Virtual bounding spheres, probe caustics, the punctual lights' photon slots (0: no
+    /// caustic VPLs), photons per light and kind.
     pub strata: UVec4,
     /// Probe → world rotation.
     pub world_from_probe: Mat4,
@@ -98,7 +100,8 @@ pub struct VplPass {
     pub vpls: [wgpu::Buffer; 2],
     /// Slot range of every source.
     pub ranges: wgpu::Buffer,
-    /// Names of the sources, in slot order (light names, "environment", "bounce").
+    /// Names of the sources, in slot order (light names, "environment", "environment_bounce",
+    /// "bounce", "<light>_caustics").
     pub source_names: Vec<String>,
     params: VplParams,
     params_buffer: wgpu::Buffer,
@@ -129,6 +132,7 @@ impl VplPass {
         scene: &GpuScene,
         rsm: &RsmPass,
         ism: &IsmResources,
+        light_photons: Option<&LightPhotons>,
         center: Vec3,
         radius: f32,
     ) -> Self {
@@ -159,6 +163,13 @@ impl VplPass {
         if settings.bounce != BounceMethod::Off {
             sources.push(Source { info: UVec4::new(2, 0, 0, 0), weight: Vec4::new(weight("bounce"), 0.0, 0.0, 0.0) });
             source_names.push("bounce".into());
+        }
+        // Caustic VPLs (reflections spec §2.18): where the light that the punctual lights'
+        // mirrors and glass send on landed (the RSMs then place none on them).
+        if light_photons.is_some() {
+            let w = weight("caustics");
+            sources.push(Source { info: UVec4::new(4, 0, 0, 0), weight: Vec4::new(w, 0.0, 0.0, 0.0) });
+            source_names.push("caustics".into());
         }
         let source_count = sources.len() as u32;
         if sources.is_empty() {
@@ -201,7 +212,12 @@ impl VplPass {
                 ism.virtual_count,
             ),
             bounce: Vec4::new(settings.bounce_cone_deg.to_radians().cos(), ism.areas.0, ism.areas.1, 0.0),
-            strata: UVec4::new(0, session.settings.probe_caustics() as u32, 0, 0),
+            strata: UVec4::new(
+                0,
+                session.settings.probe_caustics() as u32,
+                light_photons.map_or(0, |p| p.slots),
+                light_photons.map_or(0, |p| p.resolution * p.resolution),
+            ),
             world_from_probe,
         };
         let init = |label: &str, contents: &[u8], usage| {
@@ -251,7 +267,13 @@ impl VplPass {
             bind::layout(device, label, &entries)
         };
         let allocate_layout = layout("vpl/allocate_layout", 5, &[3, 4], &[0]);
-        let generate_layout = layout("vpl/generate_layout", 13, &[10, 11], &[0]);
+        let generate_layout = layout("vpl/generate_layout", 19, &[10, 11], &[0]);
+        // Without caustic VPLs the photon bindings hold stand-ins.
+        let no_photons = [rw("vpl/no_photons", 48), rw("vpl/no_photon_list", 8), rw("vpl/no_landed", 32)];
+        let [photons, photon_list, landed] = match light_photons {
+            Some(p) => [&p.buffer, &p.list, &p.landed],
+            None => [&no_photons[0], &no_photons[1], &no_photons[2]],
+        };
         let bounce_layout = layout("vpl/bounce_layout", 16, &[9, 10, 15], &[0, 11]);
         let groups = [0usize, 1].map(|parity| {
             let (current, previous) = (&vpls[parity], &vpls[1 - parity]);
@@ -286,6 +308,12 @@ impl VplPass {
                         current.as_entire_binding(),
                         bounce_slots.as_entire_binding(),
                         flux_cdf.as_entire_binding(),
+                        photons.as_entire_binding(),
+                        photon_list.as_entire_binding(),
+                        landed.as_entire_binding(),
+                        scene.geometry.triangles.as_entire_binding(),
+                        scene.geometry.instances.as_entire_binding(),
+                        scene.materials.buffer.as_entire_binding(),
                     ],
                 ),
                 bind::group(
@@ -392,6 +420,7 @@ macro_rules! vpl_shader {
             "../../../../shaders/lib/sampling.wgsl",
             "../../../../shaders/lib/vpl.wgsl",
             "../../../../shaders/lib/ism.wgsl",
+            "../../../../shaders/lib/photon.wgsl",
             "common.wgsl",
             $file,
         )

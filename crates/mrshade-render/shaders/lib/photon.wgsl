@@ -1,0 +1,13 @@
+// A landed photon of the caustics (reflections spec §2.17.1), as the specular stage's photon
+// pass writes it and `dir`'s caustic VPLs (§2.18) read it.
+struct Photon {
+    // where it landed; w: 1 if it did
+    position: vec4f,
+    // the receiver's normal (facing the photon); w: the quad half-size of its splat (m)
+    normal: vec4f,
+    // power, W (rgb); w: the receiver's triangle + 1, as bits (bitcast<u32>)
+    power: vec4f,
+}
+
+// Per light and texel: the reflected and the refracted photon of L_rv, then those of L_r.
+const PHOTON_KINDS: u32 = 4u;
