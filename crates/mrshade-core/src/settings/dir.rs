@@ -107,7 +107,8 @@ pub struct DirSettings {
     /// How VPL slots are shared among the sources.
     pub distribution: Distribution,
     /// Source weights for `distribution = "weighted"`: light names, "environment",
-    /// "environment_bounce", "bounce" (any other name is an error); unlisted sources weigh 1.
+    /// "environment_bounce", "bounce", "caustics" (the punctual lights' caustic VPLs; any
+    /// other name is an error); unlisted sources weigh 1.
     pub weights: BTreeMap<String, f32>,
     /// The multiple-bounce method.
     pub bounce: BounceMethod,

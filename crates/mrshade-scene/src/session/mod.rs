@@ -285,8 +285,12 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         (None, _) => pick_camera(&scene, None).with_context(|| field("camera"))?,
     };
     // A weight for a source that does not exist (a misspelt light name) would be ignored.
-    let sources: Vec<&str> =
-        scene.lights.iter().map(|l| l.name.as_str()).chain(["environment", "environment_bounce", "bounce"]).collect();
+    let sources: Vec<&str> = scene
+        .lights
+        .iter()
+        .map(|l| l.name.as_str())
+        .chain(["environment", "environment_bounce", "bounce", "caustics"])
+        .collect();
     if let Some(name) = settings.dir.weights.keys().find(|k| !sources.contains(&k.as_str())) {
         bail!("{}: no light or VPL source is named '{name}' (known: {})", field("dir.weights"), sources.join(", "));
     }
