@@ -122,21 +122,21 @@ fn demo_needs_no_input() {
 fn bench_reports_per_pass_gpu_time() {
     let dir = tempfile::tempdir().unwrap();
     let json = dir.path().join("bench.json");
-    let o = mrshade(&[
-        "bench",
-        "-q",
-        &demo_session(),
-        "--frames",
-        "3",
-        "--warmup",
-        "1",
-        "--width",
-        "64",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let session = demo_session();
+    let bench = |extra: &[&str]| {
+        let mut args = vec!["bench", "-q", "--frames", "3", "--warmup", "1", "--width", "64", "--json"];
+        args.push(json.to_str().unwrap());
+        args.extend_from_slice(extra);
+        args.push(&session);
+        let o = mrshade(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let report: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        (o, report)
+    };
+    // A still scene keeps its shadow maps after the warm-up; a moving insert redraws them.
+    let (_, still) = bench(&[]);
+    assert!(still["passes"]["shadows"].is_null(), "{}", still["passes"]);
+    let (o, report) = bench(&["--moving"]);
     assert_eq!(report["frames"], 3);
     assert!(!report["adapter"].as_str().unwrap().is_empty());
     for pass in ["shadows", "gbuffer", "direct", "composite"] {

@@ -518,8 +518,7 @@ impl SpecularStage {
         let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
         rec.compute(Self::TRACE_LABEL, |pass| {
             groups(pass, &self.trace, &self.trace_groups);
-            // z: the reflection and the refraction branch of each pixel (trace.wgsl).
-            pass.dispatch_workgroups(w, h, 2);
+            pass.dispatch_workgroups(w, h, 1);
         });
         if let Some(caustics) = &self.caustics {
             caustics.record(rec, &self.caustic_buffer);

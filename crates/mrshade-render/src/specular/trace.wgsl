@@ -70,14 +70,11 @@ fn store_branch(pixel: vec2i, refraction: bool, end: RayEnd) {
     }
 }
 
-// An untraced branch: a zero weight is all the resolve reads there (the other targets keep
+// An untraced pixel: zero weights are all the resolve reads there (the other targets keep
 // stale values, which saves most of this pass's memory traffic on untraced pixels).
-fn store_nothing(pixel: vec2i, refraction: bool) {
-    if (refraction) {
-        textureStore(out_refraction_weight, pixel, vec4f(0.0));
-    } else {
-        textureStore(out_reflection_weight, pixel, vec4f(0.0));
-    }
+fn store_nothing(pixel: vec2i) {
+    textureStore(out_reflection_weight, pixel, vec4f(0.0));
+    textureStore(out_refraction_weight, pixel, vec4f(0.0));
 }
 
 
@@ -143,18 +140,15 @@ fn refraction_exit(pixel: vec2i, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32
     return exit;
 }
 
-// One branch of a pixel per invocation: z = 0 the reflection, z = 1 the refraction (a
-// pixel's two chains of dependent reads run side by side). Both draw the same microfacet.
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
     lane = local;
     if (any(id.xy >= frame.size.xy)) { return; }
     let pixel = vec2i(id.xy);
-    let refraction_branch = id.z == 1u;
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     let m = materials[material_of(flags)];
     if (!is_covered(flags) || !is_traced(m)) {
-        store_nothing(pixel, refraction_branch);
+        store_nothing(pixel);
         return;
     }
     let triangle = camera_visibility[id.y * frame.size.x + id.x].x;
@@ -171,30 +165,26 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     let occlusion = textureLoad(gbuffer_emission_occlusion, pixel, 0).a;
     let view_dir = -s.view;
     let n = microfacet_normal(s.normal, s.view, s.roughness, hash_u32(id.x * 73856093u ^ id.y * 19349663u ^ u32(frame.exposure_env.w) * 83492791u));
-    // The split-sum albedo of the lobe: what the reflection takes.
+    // Reflection (spec §2.11): r = 2(n·v)n − v, weighted by the split-sum albedo of the lobe.
     let ab = env_dfg(max(dot(s.normal, s.view), 1e-4), s.roughness);
     let specular_albedo = surface_f0(s) * ab.x + surface_f90(s) * ab.y;
+    var reflected = reflect(view_dir, n);
+    if (dot(reflected, s.normal) <= 0.0) { reflected = reflect(view_dir, s.normal); }
     let real_pixel = is_real(flags);
     // A dielectric reflects a few percent: its self-reflections are not worth a BVH traversal.
     let transmission = m.transmission.x * (1.0 - s.metallic);
-    if (!refraction_branch) {
-        // Reflection (spec §2.11): r = 2(n·v)n − v.
-        var reflected = reflect(view_dir, n);
-        if (dot(reflected, s.normal) <= 0.0) { reflected = reflect(view_dir, s.normal); }
-        let sees_self = transmission <= 0.0;
-        var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self), s.roughness);
-        reflection.weight *= specular_albedo * occlusion;
-        store_branch(pixel, false, reflection);
-        if (real_pixel) {
-            let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self), s.roughness);
-            textureStore(out_reflection_real_hit, pixel, hit_texel(real_end));
-        }
-        return;
+    let sees_self = transmission <= 0.0;
+    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self), s.roughness);
+    reflection.weight *= specular_albedo * occlusion;
+    store_branch(pixel, false, reflection);
+    if (real_pixel) {
+        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self), s.roughness);
+        textureStore(out_reflection_real_hit, pixel, hit_texel(real_end));
     }
 
     // Refraction: what the lobe does not reflect, times transmission (KHR_materials_transmission).
     if (transmission <= 0.0) {
-        store_nothing(pixel, true);
+        textureStore(out_refraction_weight, pixel, vec4f(0.0));
         return;
     }
     let ior = max(m.transmission.y, 1.0);

@@ -421,11 +421,9 @@ fn object_triangle_t(k: u32, o: vec3f, d: vec3f) -> f32 {
 }
 
 // Traversal stacks in workgroup memory, one per invocation of the 8×8 workgroups (a dynamically
-// indexed private array would live in slow local memory), entry-major: the invocations' entries
-// at one depth are neighbouring words, in different memory banks (lane-major, 24 words apart,
-// eight invocations shared a bank). `lane` is set by the entry point.
+// indexed private array would live in slow local memory). `lane` is set by the entry point.
 const STACK: u32 = 24u;
-var<workgroup> stacks: array<array<u32, 64>, STACK>;
+var<workgroup> stacks: array<array<u32, STACK>, 64>;
 var<private> lane: u32;
 
 // The nearest triangle of `instance` on the world ray past `t_min`: (triangle + 1, t). The
@@ -438,39 +436,30 @@ fn trace_interior(instance: u32, origin: vec3f, dir: vec3f, t_min: f32) -> vec2f
     let o = (it.object_from_world * vec4f(origin, 1.0)).xyz;
     let d = (it.object_from_world * vec4f(dir, 0.0)).xyz;
     let inv_d = 1.0 / select(d, vec3f(1e-30), abs(d) < vec3f(1e-30));
-    // The nearer child is descended into at once (its box already read), the farther one
-    // pushed; a missed child (−1) is dropped.
-    var node = bvh_nodes[it.info.x];
-    var top = 0u;
-    loop {
+    var top = 1u;
+    stacks[lane][0] = it.info.x;
+    while (top > 0u) {
+        top -= 1u;
+        let node = bvh_nodes[stacks[lane][top]];
         if (node.count == 0u) {
             let a = bvh_nodes[node.first];
             let b = bvh_nodes[node.first + 1u];
             let ta = box_entry(o, inv_d, a.min, a.max, best.y);
             let tb = box_entry(o, inv_d, b.min, b.max, best.y);
+            // Push the farther child first; a missed child (−1) is not pushed.
             let a_first = ta >= 0.0 && (tb < 0.0 || ta <= tb);
+            let near = select(node.first + 1u, node.first, a_first);
             let far = select(node.first, node.first + 1u, a_first);
             let t_near = select(tb, ta, a_first);
             let t_far = select(ta, tb, a_first);
-            if (t_near >= 0.0) {
-                if (t_far >= 0.0 && top < STACK) { stacks[top][lane] = far; top += 1u; }
-                if (a_first) { node = a; } else { node = b; }
-                continue;
-            }
-        } else {
-            for (var k = node.first; k < node.first + node.count; k++) {
-                let t = object_triangle_t(k, o, d);
-                if (t > t_min && t < best.y) { best = vec2f(f32(bvh_triangles[k] + 1u), t); }
-            }
+            if (t_far >= 0.0 && top < STACK) { stacks[lane][top] = far; top += 1u; }
+            if (t_near >= 0.0 && top < STACK) { stacks[lane][top] = near; top += 1u; }
+            continue;
         }
-        // The next pushed node whose box is still nearer than the best hit.
-        var next = false;
-        while (top > 0u && !next) {
-            top -= 1u;
-            node = bvh_nodes[stacks[top][lane]];
-            next = box_entry(o, inv_d, node.min, node.max, best.y) >= 0.0;
+        for (var k = node.first; k < node.first + node.count; k++) {
+            let t = object_triangle_t(k, o, d);
+            if (t > t_min && t < best.y) { best = vec2f(f32(bvh_triangles[k] + 1u), t); }
         }
-        if (!next) { break; }
     }
     return best;
 }
