@@ -188,7 +188,13 @@ fn impostors_match() {
         specular::TRACE_SHADER,
         "Impostor",
         size_of::<GpuImpostor>(),
-        &[("clip_from_world", offset_of!(GpuImpostor, clip_from_world)), ("info", offset_of!(GpuImpostor, info))],
+        &[
+            ("clip_from_world", offset_of!(GpuImpostor, clip_from_world)),
+            ("info", offset_of!(GpuImpostor, info)),
+            ("eye", offset_of!(GpuImpostor, eye)),
+            ("seen_min", offset_of!(GpuImpostor, seen_min)),
+            ("seen_max", offset_of!(GpuImpostor, seen_max)),
+        ],
     );
 }
 
