@@ -186,14 +186,7 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
 /// Slices of the specular stage's views: per traced instance and every other instance, one
 /// impostor or six cube faces.
 fn specular_slices(scene: &Scene, specular: &SpecularSettings) -> u64 {
-    let traced = scene
-        .instances
-        .iter()
-        .filter(|i| {
-            let m = &scene.materials[scene.primitives[i.primitive].material];
-            specular.traces(m.metallic, m.roughness, m.transmission)
-        })
-        .count() as u64;
+    let traced = scene.instances.iter().filter(|i| crate::specular::traces_instance(scene, specular, i)).count() as u64;
     let others = (scene.instances.len() as u64).saturating_sub(1);
     traced * others * crate::specular::impostors::slices_per_pair(specular.intersection) as u64
 }

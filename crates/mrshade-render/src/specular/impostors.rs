@@ -23,7 +23,8 @@ pub struct GpuImpostor {
     pub clip_from_world: Mat4,
     /// Instance drawn, first texel of its slice, side in texels, unused.
     pub info: UVec4,
-    /// Cube faces: the traced instance's centre, where the cube is (w unused).
+    /// Cube faces: the traced instance's centre, where the cube is; w: the faces' near plane
+    /// (0 for an impostor).
     pub eye: Vec4,
     /// The drawn instance's world box, where a layered cube is marched (w unused).
     pub seen_min: Vec4,

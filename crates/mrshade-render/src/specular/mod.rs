@@ -30,7 +30,7 @@ use interior::Interiors;
 use mrshade_core::Differential;
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::{
-    Concentration, InternalReflections, Intersection, Refraction, RefractionPolicy, RenderSettings,
+    Concentration, InternalReflections, Intersection, Refraction, RefractionPolicy, RenderSettings, SpecularSettings,
 };
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
@@ -48,6 +48,13 @@ struct SpecularParams {
 }
 
 const NO_VIEW: u32 = u32::MAX;
+
+/// Whether the stage traces scene instance `instance` (its material is mirror-like or
+/// transmissive, within `settings`).
+pub fn traces_instance(scene: &Scene, settings: &SpecularSettings, instance: &mrshade_scene::Instance) -> bool {
+    let m = &scene.materials[scene.primitives[instance.primitive].material];
+    settings.traces(m.metallic, m.roughness, m.transmission)
+}
 
 /// Everything the stage reads, built before it.
 pub struct SpecularInputs<'a> {

@@ -39,6 +39,8 @@ pub const PHOTON_KINDS: u64 = 4;
 pub const SPLAT_LIST_BYTES: u64 = 8;
 /// The two levels' indirect draws (`SplatDraw` in photons.wgsl) before cs_size counts.
 const EMPTY_DRAWS: [u32; 8] = [0, 1, 0, 0, 0, 1, 0, 0];
+/// Bytes of a group's two indirect draws (what `LightPhotons::landed` keeps of them).
+pub const SPLAT_DRAWS_BYTES: u64 = std::mem::size_of_val(&EMPTY_DRAWS) as u64;
 
 /// Buffers of the specular stage the photons are traced through.
 pub struct CausticInputs<'a> {
@@ -105,31 +107,41 @@ impl LightPhotons {
     pub fn new(ctx: &GpuContext, session: &Session) -> Option<Self> {
         let (scene, settings) = (&session.scene, &session.settings);
         let caster = scene.instances.iter().any(|i| {
-            let p = &scene.primitives[i.primitive];
-            let m = &scene.materials[p.material];
-            settings.specular.traces(m.metallic, m.roughness, m.transmission) && !p.is_deformable()
+            super::traces_instance(scene, &settings.specular, i) && !scene.primitives[i.primitive].is_deformable()
         });
         if !settings.caustics.enabled || scene.lights.is_empty() || !caster {
             return None;
         }
         let resolution = settings.caustics.photon_resolution;
         let slots = scene.lights.len() as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64;
-        let buffer = |label: &str, size: u64, usage| {
-            ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::STORAGE | usage,
-                mapped_at_creation: false,
-            })
-        };
-        Some(Self {
-            buffer: buffer("specular/photons_lights", slots * PHOTON_BYTES, wgpu::BufferUsages::COPY_SRC),
-            list: buffer("specular/photons_lights/splat_list", slots * SPLAT_LIST_BYTES, wgpu::BufferUsages::empty()),
-            landed: buffer("specular/photons_lights/landed", 32, wgpu::BufferUsages::COPY_DST),
-            slots: slots as u32,
-            resolution,
-        })
+        let (buffer, list) = photon_buffers(&ctx.device, LIGHTS_LABEL, slots);
+        let landed = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("specular/photons_lights/landed"),
+            size: SPLAT_DRAWS_BYTES,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Some(Self { buffer, list, landed, slots: slots as u32, resolution })
     }
+}
+
+/// Label of the punctual lights' photon group (the probe's is "specular/photons_probe").
+const LIGHTS_LABEL: &str = "specular/photons_lights";
+
+/// A photon group's G-buffer and splat lists for `slots` photons.
+fn photon_buffers(device: &wgpu::Device, label: &str, slots: u64) -> (wgpu::Buffer, wgpu::Buffer) {
+    let buffer = |label: &str, size: u64, usage| {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | usage,
+            mapped_at_creation: false,
+        })
+    };
+    (
+        buffer(label, slots * PHOTON_BYTES, wgpu::BufferUsages::COPY_SRC),
+        buffer(&format!("{label}/splat_list"), slots * SPLAT_LIST_BYTES, wgpu::BufferUsages::empty()),
+    )
 }
 
 /// The photon tracing and splatting that fill the caustic buffer.
@@ -252,7 +264,7 @@ impl Caustics {
 
         let mut groups = Vec::new();
         for (label, sources, resolution, from_probe) in [
-            ("specular/photons_lights", lights, settings.photon_resolution, 0),
+            (LIGHTS_LABEL, lights, settings.photon_resolution, 0),
             ("specular/photons_probe", directions, settings.environment_resolution, 1),
         ] {
             if sources == 0 {
@@ -268,20 +280,7 @@ impl Caustics {
             let shared = inputs.light_photons.filter(|_| from_probe == 0);
             let (photons, list) = match shared {
                 Some(lights) => (lights.buffer.clone(), lights.list.clone()),
-                None => (
-                    device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(label),
-                        size: slots * PHOTON_BYTES,
-                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                        mapped_at_creation: false,
-                    }),
-                    device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(&format!("{label}/splat_list")),
-                        size: slots * SPLAT_LIST_BYTES,
-                        usage: wgpu::BufferUsages::STORAGE,
-                        mapped_at_creation: false,
-                    }),
-                ),
+                None => photon_buffers(device, label, slots),
             };
             let draws = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label}/splat_draws")),
@@ -383,7 +382,7 @@ impl Caustics {
         });
         for g in &self.groups {
             if let Some(landed) = &g.landed {
-                rec.encoder.copy_buffer_to_buffer(&g.draws, 0, landed, 0, 32);
+                rec.encoder.copy_buffer_to_buffer(&g.draws, 0, landed, 0, SPLAT_DRAWS_BYTES);
             }
         }
         fn clear(t: &Target) -> Option<wgpu::RenderPassColorAttachment<'_>> {

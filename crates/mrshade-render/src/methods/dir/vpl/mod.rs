@@ -9,7 +9,7 @@ use crate::methods::dir::ProbePyramid;
 use crate::methods::dir::ism::IsmResources;
 use crate::methods::dir::rsm::RsmPass;
 use crate::scene_gpu::{Geometry, GpuScene};
-use crate::specular::caustics::LightPhotons;
+use crate::specular::caustics::{LightPhotons, PHOTON_BYTES, SPLAT_DRAWS_BYTES, SPLAT_LIST_BYTES};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
 use mrshade_core::settings::{BounceMethod, DirSettings, Distribution};
@@ -101,7 +101,7 @@ pub struct VplPass {
     /// Slot range of every source.
     pub ranges: wgpu::Buffer,
     /// Names of the sources, in slot order (light names, "environment", "environment_bounce",
-    /// "bounce", "<light>_caustics").
+    /// "bounce", "caustics").
     pub source_names: Vec<String>,
     params: VplParams,
     params_buffer: wgpu::Buffer,
@@ -269,7 +269,11 @@ impl VplPass {
         let allocate_layout = layout("vpl/allocate_layout", 5, &[3, 4], &[0]);
         let generate_layout = layout("vpl/generate_layout", 19, &[10, 11], &[0]);
         // Without caustic VPLs the photon bindings hold stand-ins.
-        let no_photons = [rw("vpl/no_photons", 48), rw("vpl/no_photon_list", 8), rw("vpl/no_landed", 32)];
+        let no_photons = [
+            rw("vpl/no_photons", PHOTON_BYTES),
+            rw("vpl/no_photon_list", SPLAT_LIST_BYTES),
+            rw("vpl/no_landed", SPLAT_DRAWS_BYTES),
+        ];
         let [photons, photon_list, landed] = match light_photons {
             Some(p) => [&p.buffer, &p.list, &p.landed],
             None => [&no_photons[0], &no_photons[1], &no_photons[2]],
