@@ -154,3 +154,18 @@ fn too_many_lights_for_the_device_is_an_error_not_a_bug_report() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("bug in mrshade"), "{err}");
 }
+
+#[test]
+fn bench_moving_needs_a_virtual_object() {
+    // Every node made real: nothing for --moving to turn.
+    let dir = session_with(|d| {
+        for node in d["nodes"].as_array_mut().unwrap() {
+            node["extras"] = json!({"real": true});
+        }
+    });
+    let path = session_path(&dir);
+    one_line_error(
+        &mrshade(&["bench", &path, "--moving", "--frames", "1", "--warmup", "0", "--width", "32"]),
+        &["--moving", "no virtual object"],
+    );
+}
