@@ -3,9 +3,11 @@
 mirror object and a spot light): the benchmark's desk-glass with desk-mirror's mirror sphere
 and a real spot light added, written as OUT/scene.gltf + scene.bin + session.toml.
 
-usage: specular-bench-scene.py SCENES_DIR OUT   (SCENES_DIR: the team's benchmark data)
+usage: specular-bench-scene.py SCENES_DIR OUT [--planar]   (SCENES_DIR: the team's benchmark data)
+  --planar: also a flat virtual mirror (30 × 20 cm) standing behind the bunny, facing the
+  camera, for `specular.intersection = "planar"`.
 """
-import json, shutil, sys
+import json, shutil, struct, sys
 from pathlib import Path
 
 scenes, out = Path(sys.argv[1]), Path(sys.argv[2])
@@ -46,8 +48,37 @@ glass["nodes"].append({"name": "lamp", "translation": [0.1, 0.6, 0.1], "rotation
                        "extensions": {"KHR_lights_punctual": {"light": 0}}, "extras": {"real": True}})
 root = glass["scenes"][glass.get("scene", 0)]["nodes"]
 root += [len(glass["nodes"]) - 2, len(glass["nodes"]) - 1]
-glass["buffers"][0] = {"uri": "scene.bin", "byteLength": len(glass_bin) + len(mirror_bin)}
-(out / "scene.bin").write_bytes(glass_bin + mirror_bin)
+extra = b""
+if "--planar" in sys.argv[3:]:
+    # Positions, normals (+z) and two triangles of a 30 × 20 cm quad, appended after both bins.
+    base = len(glass_bin) + len(mirror_bin)
+    base_pad = -base % 4
+    quad = [(-0.15, 0.0, 0.0), (0.15, 0.0, 0.0), (0.15, 0.2, 0.0), (-0.15, 0.2, 0.0)]
+    positions = b"".join(struct.pack("<3f", *p) for p in quad)
+    normals = struct.pack("<3f", 0, 0, 1) * 4
+    indices = struct.pack("<6H", 0, 1, 2, 0, 2, 3)
+    extra = b"\0" * base_pad + positions + normals + indices
+    start = base + base_pad
+    views = [(start, len(positions)), (start + 48, len(normals)), (start + 96, len(indices))]
+    first_view = len(glass["bufferViews"])
+    glass["bufferViews"] += [{"buffer": 0, "byteOffset": o, "byteLength": n} for o, n in views]
+    first_accessor = len(glass["accessors"])
+    glass["accessors"] += [
+        {"bufferView": first_view, "componentType": 5126, "count": 4, "type": "VEC3",
+         "min": [-0.15, 0.0, 0.0], "max": [0.15, 0.2, 0.0]},
+        {"bufferView": first_view + 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+        {"bufferView": first_view + 2, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    ]
+    glass["materials"].append({"name": "flat-mirror", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.95, 0.95, 0.95, 1], "metallicFactor": 1.0, "roughnessFactor": 0.0}})
+    glass["meshes"].append({"name": "flat-mirror", "primitives": [{"attributes": {
+        "POSITION": first_accessor, "NORMAL": first_accessor + 1}, "indices": first_accessor + 2,
+        "material": len(glass["materials"]) - 1}]})
+    glass["nodes"].append({"name": "flat-mirror", "mesh": len(glass["meshes"]) - 1,
+                           "translation": [-0.05, 0.0, -0.25], "extras": {"real": False}})
+    root.append(len(glass["nodes"]) - 1)
+glass["buffers"][0] = {"uri": "scene.bin", "byteLength": len(glass_bin) + len(mirror_bin) + len(extra)}
+(out / "scene.bin").write_bytes(glass_bin + mirror_bin + extra)
 (out / "scene.gltf").write_text(json.dumps(glass))
 for f in ["background.png", "environment.exr"]:
     shutil.copy(scenes / "desk-glass" / f, out / f)

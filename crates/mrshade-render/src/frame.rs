@@ -63,7 +63,7 @@ impl Renderer {
         // 5. G-buffer, geometry, L_rv, L_r, photo ─▶ the light of reflections and refractions
         //    on traced pixels (impostors, reflection/refraction G-buffers, back-projection).
         //    Hit surfaces off screen are shaded with the method's light at any point (its
-        //    VPLs of this frame).
+        //    VPLs of this frame). Smoothed over frames through the motion vectors.
         if let Some(specular) = &mut self.specular {
             let vpl_parity = self.method.point_light().map_or(0, |p| p.parity);
             specular.record(rec, raster, vpl_parity);
@@ -98,11 +98,13 @@ impl Renderer {
         let (w, h) = self.internal_size();
         let unjittered = inputs.camera.clip_from_world(w, h);
         let camera_moved = self.previous_clip_from_world.is_some_and(|p| p != unjittered);
+        let changed = camera_moved || self.scene.geometry.moved() || lights_moved || inputs.photo.is_some();
         self.uniforms.set_camera(&inputs.camera, inputs.jitter, self.previous_clip_from_world);
         self.previous_clip_from_world = Some(unjittered);
         self.gbuffer_pass.camera.set_clip_from_world(queue, self.uniforms.clip_from_world);
         if let Some(specular) = &mut self.specular {
-            specular.prepare(queue, &self.scene.geometry, self.uniforms.clip_from_world);
+            let eye = self.uniforms.camera_position.truncate();
+            specular.prepare(queue, &self.scene.geometry, self.uniforms.clip_from_world, eye, changed);
         }
         self.uniforms.exposure_env.w = self.frame_index as f32;
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&self.uniforms));
@@ -139,6 +141,9 @@ impl Renderer {
         self.frame_index = frame;
         self.previous_clip_from_world = None;
         self.method.seek(frame);
+        if let Some(specular) = &mut self.specular {
+            specular.seek();
+        }
     }
 
     /// The session's own camera (its glTF camera, or the first pose of a sequence).

@@ -151,11 +151,15 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
-    // The specular stage's impostors or cube faces, in one buffer: coarser slices.
+    // The specular stage's impostors or cube faces, and the planar reflectors' views at the
+    // frame's size, in one buffer: coarser slices.
     let slices = specular_slices(scene, &settings.specular);
-    let slices_fit = |res: u64| slices * res * res * 8 <= max_binding;
+    let planar = planar_bytes(scene, &settings.specular, &output);
+    let slices_fit = |res: u64| slices * res * res * 8 + planar <= max_binding;
     let (name, side) = match settings.specular.intersection {
-        Intersection::Impostor => ("specular.impostor_resolution", &mut settings.specular.impostor_resolution),
+        Intersection::Impostor | Intersection::Planar => {
+            ("specular.impostor_resolution", &mut settings.specular.impostor_resolution)
+        }
         Intersection::Cube | Intersection::LayeredCube => {
             ("specular.cube_resolution", &mut settings.specular.cube_resolution)
         }
@@ -189,6 +193,14 @@ fn specular_slices(scene: &Scene, specular: &SpecularSettings) -> u64 {
     let traced = scene.instances.iter().filter(|i| crate::specular::traces_instance(scene, specular, i)).count() as u64;
     let others = (scene.instances.len() as u64).saturating_sub(1);
     traced * others * crate::specular::impostors::slices_per_pair(specular.intersection) as u64
+}
+
+/// Bytes of the planar reflectors' views (`specular.intersection = "planar"`): one or two per
+/// flat traced instance, at the internal frame size.
+fn planar_bytes(scene: &Scene, specular: &SpecularSettings, output: &OutputSize) -> u64 {
+    let views: u32 = crate::specular::planar::reflectors(scene, specular).iter().map(|r| r.views()).sum();
+    let ss = output.supersample;
+    views as u64 * crate::specular::impostors::planar_view_bytes((output.width * ss, output.height * ss))
 }
 
 /// The scene's own buffers and textures: geometry in single bindings, textures in two arrays.
@@ -267,8 +279,8 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
     ];
     let side = crate::specular::impostors::slice_resolution(&settings.specular) as u64;
     items.push((
-        "specular impostors or cube faces (slices × resolution²)",
-        specular_slices(scene, &settings.specular) * side * side * 8,
+        "specular impostors or cube faces (slices × resolution²), planar views",
+        specular_slices(scene, &settings.specular) * side * side * 8 + planar_bytes(scene, &settings.specular, output),
     ));
     // The caustics' photon G-buffers, where the specular stage runs.
     let traced = scene.materials.iter().any(|m| settings.specular.traces(m.metallic, m.roughness, m.transmission));

@@ -33,6 +33,29 @@ impl Renderer {
         let averaged = (frames / 2).max(1);
         let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
         let mut mean = Average::default();
+        // The average is the still's own smoothing of the specular light (unbiased).
+        if let Some(specular) = &mut self.specular {
+            specular.pause_smoothing(true);
+        }
+        let result = self.average_frames(ctx, &mut profiler, frames, averaged, inputs, &mut mean, &mut progress);
+        if let Some(specular) = &mut self.specular {
+            specular.pause_smoothing(false);
+        }
+        result?;
+        mean.finish()
+    }
+
+    #[allow(clippy::too_many_arguments, reason = "the still's loop, apart from its set-up")]
+    fn average_frames(
+        &mut self,
+        ctx: &GpuContext,
+        profiler: &mut wgpu_profiler::GpuProfiler,
+        frames: u32,
+        averaged: u32,
+        inputs: &FrameInputs,
+        mean: &mut Average,
+        progress: &mut impl FnMut(u32),
+    ) -> Result<()> {
         for i in 0..frames {
             let averaging = i + averaged >= frames;
             // Sub-pixel jitter over the averaged frames: their mean is an anti-aliased image,
@@ -41,13 +64,13 @@ impl Renderer {
             let jitter = if averaging && averaged > 1 { jitter((i + averaged + 1) - frames) } else { Vec2::ZERO };
             // The photo and transforms are uploaded once; later frames keep them.
             let frame = if i == 0 { *inputs } else { FrameInputs::camera(inputs.camera) };
-            self.render_untimed(ctx, &mut profiler, &FrameInputs { jitter, ..frame })?;
+            self.render_untimed(ctx, profiler, &FrameInputs { jitter, ..frame })?;
             progress(i + 1);
             if averaging {
                 mean.add(self.read_composite(ctx)?);
             }
         }
-        mean.finish()
+        Ok(())
     }
 
     /// Renders `frames` untimed frames of the session's own view, calling `progress(i)` after

@@ -90,7 +90,7 @@ fn srgb_to_linear(c: u8) -> f32 {
 }
 
 /// Every `specular.intersection`.
-const INTERSECTIONS: [&str; 3] = ["impostor", "cube", "layered-cube"];
+const INTERSECTIONS: [&str; 4] = ["impostor", "cube", "layered-cube", "planar"];
 
 #[test]
 fn a_virtual_planar_mirror_shows_the_photo_where_its_reflection_lands() {
@@ -506,4 +506,81 @@ fn total_internal_reflection_is_followed_or_takes_the_fallback() {
             assert!((got - floor).length() < 0.02, "two interfaces: the fallback lands at {floor}, not {got}");
         }
     }
+}
+
+/// A virtual metal quad of `roughness` tilted 60° above a real textured floor, seen from
+/// above, with the specular light smoothed at `temporal_weight`; no frames rendered yet.
+fn tilted_metal(roughness: f32, temporal_weight: f32) -> common::Rendered {
+    const SIZE: u32 = 48;
+    let mut s = Setup::top_down(SIZE);
+    s.photo = Box::new(textured);
+    s.probe = Some([0.5, 0.5, 0.5]);
+    s.extra_toml += &format!("[output]\nframes = 1\n[specular]\ntemporal_weight = {temporal_weight}\n");
+    s.plane(2.0, 0.0, 0.5, true);
+    let m = s.gltf.material(json!({"name": "metal",
+        "pbrMetallicRoughness": {"metallicFactor": 1.0, "roughnessFactor": roughness}}));
+    let mesh = s.gltf.mesh(&quad(0.15), Some(m), true);
+    s.gltf.node(json!({"name": "metal", "mesh": mesh, "translation": [-0.2, 0.15, 0.0],
+        "rotation": quat([0.0, 0.0, 1.0], -60f32.to_radians()), "extras": {"real": false}}));
+    s.render()
+}
+
+/// One frame with `photo` uploaded (a live stream's frame: everything counts as changed).
+fn stream_frame(r: &mut common::Rendered, photo: &dyn Fn(u32, u32) -> [u8; 3]) -> Vec<f32> {
+    let (w, h) = (r.session.output.width, r.session.output.height);
+    let rgb: Vec<u8> = (0..h).flat_map(|y| (0..w).flat_map(move |x| photo(x, y))).collect();
+    let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&rgb, (w, h));
+    let camera = r.renderer.session_camera();
+    let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
+    let inputs = mrshade_render::FrameInputs { photo: Some(&packed), ..mrshade_render::FrameInputs::camera(camera) };
+    r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
+    r.renderer.read_composite(&r.ctx).unwrap().image.pixels.iter().map(|p| p[0] + p[1] + p[2]).collect()
+}
+
+/// Temporal smoothing of the specular light (spec §2.19, the filter ours): in a live stream a
+/// glossy metal's one ray per pixel and frame flickers less with the default weight than
+/// without, and a new photo shows in a smooth mirror at once (the history is clamped to the
+/// new frame's values around each pixel), not after many frames.
+#[test]
+fn the_specular_light_is_smoothed_in_a_stream_and_a_new_photo_shows_at_once() {
+    let flicker = |weight: f32| {
+        let mut r = tilted_metal(0.3, weight);
+        let frames: Vec<Vec<f32>> = (0..10).map(|_| stream_frame(&mut r, &textured)).collect();
+        let change: f32 =
+            frames[4..].windows(2).map(|f| f[0].iter().zip(&f[1]).map(|(a, b)| (a - b).abs()).sum::<f32>()).sum();
+        change / 5.0
+    };
+    let (rough, smooth) = (flicker(0.0), flicker(0.8));
+    assert!(rough > 0.0, "a glossy reflection changes from frame to frame without smoothing");
+    assert!(smooth < 0.4 * rough, "smoothed flicker {smooth} is not well below {rough}");
+
+    let inverted = |x: u32, y: u32| [(235 - x * 4) as u8, (235 - y * 4) as u8, 60];
+    let switch = |weight: f32| {
+        let mut r = tilted_metal(0.0, weight);
+        for _ in 0..6 {
+            stream_frame(&mut r, &textured);
+        }
+        stream_frame(&mut r, &inverted)
+    };
+    let (plain, smoothed) = (switch(0.0), switch(0.8));
+    let before = {
+        let mut r = tilted_metal(0.0, 0.0);
+        stream_frame(&mut r, &textured)
+    };
+    // Where the mirror's reflection changed with the photo, the smoothed frame is the new one:
+    // without the clip it would trail by the history's weight (80 % of the change).
+    let (mut trail, mut change, mut checked) = (0.0, 0.0, 0);
+    for ((&p, &s), &b) in plain.iter().zip(&smoothed).zip(&before) {
+        if (p - b).abs() > 0.3 * p.max(b) {
+            checked += 1;
+            trail += (s - p).abs();
+            change += (b - p).abs();
+        }
+    }
+    assert!(checked >= 100, "only {checked} pixels changed with the photo");
+    assert!(
+        trail <= 0.1 * change,
+        "the smoothed frame keeps {:.1} % of the old photo's reflection",
+        100.0 * trail / change
+    );
 }

@@ -25,6 +25,13 @@ pub enum Intersection {
     /// under/overshoot pair), one layer per other object; the object's own front- and
     /// back-face layers are replaced by the exact intersection of its own triangles.
     LayeredCube,
+    /// Planar reflection (spec §2.13): every flat mirror-like object draws the scene seen
+    /// from the camera mirrored about its plane (clipped at the plane) into a texture of the
+    /// frame's size, and its smooth camera reflections read their surface at their own pixel,
+    /// exact to the pixel. Redrawn whenever the camera or an object moves. What it cannot
+    /// serve (curved or rough reflectors, refractions, further bounces, photons) is marched
+    /// through impostors, as `impostor` does (the thesis's planar method has none of these).
+    Planar,
 }
 
 /// How a refracted ray finds where it leaves a transmissive object.
@@ -78,7 +85,8 @@ pub struct SpecularSettings {
     /// runs only when the scene holds such a material; off, they reflect and refract the
     /// probe alone. Default on.
     pub enabled: bool,
-    /// Ray intersection technique: `impostor`, `cube` or `layered-cube`. Default `impostor`.
+    /// Ray intersection technique: `impostor`, `cube`, `layered-cube` or `planar`. Default
+    /// `impostor`.
     pub intersection: Intersection,
     /// Side of each cube-map face of `cube` and `layered-cube`, texels. Default 512 [T §7:
     /// 512×512×6].
@@ -116,6 +124,15 @@ pub struct SpecularSettings {
     /// Partial internal reflections of traced refractions (and of photons). Default
     /// `sampled`.
     pub internal_reflections: InternalReflections,
+    /// Temporal smoothing of the stage's light (spec §2.19: the paper smooths `L'_rv` and
+    /// `L'_r` against flicker, filter not stated): each pixel's last value, found through the
+    /// G-buffer's motion, is blended in with this weight on frames where the camera, an
+    /// object, a light or the photo changed, after clamping it to the range of this frame's
+    /// values around the pixel (so that what the change uncovers or moves does not trail);
+    /// while nothing changes, the frames since the last change are averaged. It calms the
+    /// one glossy ray and the one internal-reflection choice per pixel and frame, and the
+    /// photons' per-frame directions, in a live stream. 0: off. Default 0.8 (ours).
+    pub temporal_weight: f32,
 }
 
 impl Default for SpecularSettings {
@@ -134,6 +151,7 @@ impl Default for SpecularSettings {
             refraction_policy: RefractionPolicy::KeepRefraction,
             refraction: Refraction::Traced,
             internal_reflections: InternalReflections::Sampled,
+            temporal_weight: 0.8,
         }
     }
 }
@@ -184,6 +202,11 @@ impl SpecularSettings {
                 && self.backprojection_epsilon < 1.0,
             "specular.backprojection_epsilon",
             format!("must be a number in (0, 1), got {}", self.backprojection_epsilon),
+        )?;
+        check(
+            self.temporal_weight.is_finite() && (0.0..1.0).contains(&self.temporal_weight),
+            "specular.temporal_weight",
+            format!("must be a number in [0, 1), got {}", self.temporal_weight),
         )
     }
 }
@@ -222,12 +245,16 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("backprojection_epsilon"));
         let err = toml::from_str::<SpecularSettings>("refraction_policy = \"c\"").unwrap_err();
         assert!(err.to_string().contains("keep-refraction"), "{err}");
+        let bad = SpecularSettings { temporal_weight: 1.0, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("specular.temporal_weight"));
         let bad = SpecularSettings { cube_resolution: 8, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("specular.cube_resolution"));
         let err = toml::from_str::<SpecularSettings>("intersection = \"planar-cube\"").unwrap_err();
         assert!(err.to_string().contains("layered-cube"), "{err}");
         let parsed: SpecularSettings = toml::from_str("intersection = \"layered-cube\"").unwrap();
         assert_eq!(parsed.intersection, Intersection::LayeredCube);
+        let parsed: SpecularSettings = toml::from_str("intersection = \"planar\"").unwrap();
+        assert_eq!(parsed.intersection, Intersection::Planar);
         let err = toml::from_str::<SpecularSettings>("internal_reflections = \"kept\"").unwrap_err();
         assert!(err.to_string().contains("sampled") && err.to_string().contains("dropped"), "{err}");
     }

@@ -57,6 +57,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("specular.probe_lobe", Kind::Number),
     ("specular.internal_reflections", Kind::Choice(&["sampled", "dropped", "kept"])),
     ("specular.refraction_policy", Kind::Choice(&["keep-refraction", "rendered"])),
+    ("specular.temporal_weight", Kind::Number),
     ("caustics.enabled", Kind::Bool),
     ("caustics.photon_resolution", Kind::Number),
     ("caustics.environment_directions", Kind::Number),

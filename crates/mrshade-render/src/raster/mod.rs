@@ -43,6 +43,7 @@ struct ViewUniform {
     size: UVec4,
     limits: UVec4,
     params: Vec4,
+    clip_plane: Vec4,
 }
 
 /// Triangles whose bounding box covers more pixels than this are shared by a workgroup.
@@ -73,6 +74,13 @@ impl RasterView {
     /// (width, height) in texels.
     pub fn size(&self) -> (u32, u32) {
         (self.uniform.size.x, self.uniform.size.y)
+    }
+
+    /// Draws only what lies on the positive side of the world-space `plane`
+    /// (`dot(plane.xyz, p) + plane.w > 0`; `Vec4::W`, the default, keeps everything). Call
+    /// before `set_clip_from_world`, which uploads both.
+    pub fn set_clip_plane(&mut self, plane: Vec4) {
+        self.uniform.clip_plane = plane;
     }
 
     /// Changes the projection (a moving camera or light); takes effect at the next frame.
@@ -174,6 +182,7 @@ impl Rasterizer {
             size: UVec4::new(size.0, size.1, filter, first + triangles),
             limits: UVec4::new(BIG_CAPACITY, SMALL_TRIANGLE_PIXELS, BIG_TILE_STRIDE, first),
             params: Vec4::new(near, farthest, 0.0, 0.0),
+            clip_plane: Vec4::W,
         };
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}/view")),

@@ -16,6 +16,9 @@ struct RasterView {
     limits: vec4u,
     // near-plane w (0: no clipping, orthographic), 1 to keep the farthest surface, unused…
     params: vec4f,
+    // World-space plane: only points with dot(xyz, p) + w > 0 are drawn (a planar mirror's
+    // mirrored camera sees nothing behind the mirror); (0, 0, 0, 1) keeps everything.
+    clip_plane: vec4f,
 }
 
 @group(0) @binding(0) var<uniform> view: RasterView;
@@ -32,27 +35,32 @@ struct RasterView {
 const FILTER_REAL: u32 = 1u;
 const FILTER_VIRTUAL: u32 = 2u;
 
-fn write_texel(x: u32, y: u32, a: vec3f, b: vec3f, c: vec3f, inv_area: f32, payload: u32) {
-    let w = texel_weights(x, y, a, b, c, inv_area);
+// a, b, c: screen x, y, depth, and the clip plane's distance over w (its sign is the side,
+// and it interpolates linearly on screen).
+fn write_texel(x: u32, y: u32, a: vec4f, b: vec4f, c: vec4f, inv_area: f32, payload: u32) {
+    let w = texel_weights(x, y, a.xyz, b.xyz, c.xyz, inv_area);
     if (!covers(w)) { return; }
     let z = w.x * a.z + w.y * b.z + w.z * c.z;
     if (z <= 0.0 || z > 1.0) { return; }
+    if (w.x * a.w + w.y * b.w + w.z * c.w <= 0.0) { return; }
     // Reversed depth: the nearest surface has the largest; 1 − z makes atomicMax keep the farthest.
     let kept = select(z, 1.0 - z, view.params.y > 0.0);
     let packed = (u64(bitcast<u32>(kept)) << 32u) | u64(payload);
     atomicMax(&target_texels[y * view.size.x + x], packed);
 }
 
-fn raster_screen_triangle(a: vec3f, b: vec3f, c: vec3f, payload: u32) {
+fn raster_screen_triangle(a: vec4f, b: vec4f, c: vec4f, payload: u32) {
+    // Entirely behind the clip plane.
+    if (max(a.w, max(b.w, c.w)) <= 0.0) { return; }
     let area = edge(a.xy, b.xy, c.xy);
     if (abs(area) < 1e-12) { return; }
-    let bb = texel_bbox(a, b, c, vec2i(view.size.xy) - 1);
+    let bb = texel_bbox(a.xyz, b.xyz, c.xyz, vec2i(view.size.xy) - 1);
     if (bb.x > bb.z || bb.y > bb.w) { return; }
     let count = u32(bb.z - bb.x + 1) * u32(bb.w - bb.y + 1);
     if (count > view.limits.y) {
         let slot = atomicAdd(&big_args[0], 1u);
         if (slot < view.limits.x) {
-            big[slot] = BigTriangle(vec4f(a, 0.0), vec4f(b, 0.0), vec4f(c, 0.0), vec4u(bb), vec4u(payload, 0u, 0u, 0u));
+            big[slot] = BigTriangle(a, b, c, vec4u(bb), vec4u(payload, 0u, 0u, 0u));
             return;
         }
         // Out of records: undo the count so cs_big never reads past the buffer, and draw here.
@@ -66,10 +74,11 @@ fn raster_screen_triangle(a: vec3f, b: vec3f, c: vec3f, payload: u32) {
     }
 }
 
-fn to_screen(h: vec4f) -> vec3f {
+// Clip-space `h` with clip-plane distance `d` on screen (see write_texel).
+fn to_screen(h: vec4f, d: f32) -> vec4f {
     let ndc = h.xyz / h.w;
     let size = vec2f(view.size.xy);
-    return vec3f((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, clamp(ndc.z, 0.0, 1.0));
+    return vec4f((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, clamp(ndc.z, 0.0, 1.0), d / h.w);
 }
 
 @compute @workgroup_size(64)
@@ -80,37 +89,42 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) 
     let inst = instances[tri.x];
     let real = (inst.info.y & SURFACE_REAL) != 0u;
     if ((view.size.z == FILTER_REAL && !real) || (view.size.z == FILTER_VIRTUAL && real)) { return; }
-    let clip_from_object = view.clip_from_world * inst.world_from_object;
     var v: array<vec4f, 3>;
+    var d: array<f32, 3>;
     for (var k = 0u; k < 3u; k++) {
-        v[k] = clip_from_object * vec4f(vertex_position(indices[tri.y + k] + tri.z), 1.0);
+        let world = inst.world_from_object * vec4f(vertex_position(indices[tri.y + k] + tri.z), 1.0);
+        v[k] = view.clip_from_world * world;
+        d[k] = dot(view.clip_plane, world);
     }
     let payload = id + 1u;
     let near = view.params.x;
     if (near <= 0.0) {
-        raster_screen_triangle(to_screen(v[0]), to_screen(v[1]), to_screen(v[2]), payload);
+        raster_screen_triangle(to_screen(v[0], d[0]), to_screen(v[1], d[1]), to_screen(v[2], d[2]), payload);
         return;
     }
-    // Clip against w ≥ near (the camera's near plane of the reversed infinite projection).
+    // Clip against w ≥ near (the camera's near plane of the reversed infinite projection);
+    // the clip-plane distance is carried along.
     var poly: array<vec4f, 4>;
+    var poly_d: array<f32, 4>;
     var n = 0u;
     for (var k = 0u; k < 3u; k++) {
         let p = v[k];
         let q = v[(k + 1u) % 3u];
         let p_in = p.w >= near;
         let q_in = q.w >= near;
-        if (p_in) { poly[n] = p; n++; }
+        if (p_in) { poly[n] = p; poly_d[n] = d[k]; n++; }
         if (p_in != q_in) {
             let t = (near - p.w) / (q.w - p.w);
             poly[n] = mix(p, q, t);
+            poly_d[n] = mix(d[k], d[(k + 1u) % 3u], t);
             n++;
         }
     }
     if (n < 3u) { return; }
-    let s0 = to_screen(poly[0]);
-    raster_screen_triangle(s0, to_screen(poly[1]), to_screen(poly[2]), payload);
+    let s0 = to_screen(poly[0], poly_d[0]);
+    raster_screen_triangle(s0, to_screen(poly[1], poly_d[1]), to_screen(poly[2], poly_d[2]), payload);
     if (n == 4u) {
-        raster_screen_triangle(s0, to_screen(poly[2]), to_screen(poly[3]), payload);
+        raster_screen_triangle(s0, to_screen(poly[2], poly_d[2]), to_screen(poly[3], poly_d[3]), payload);
     }
 }
 
@@ -123,7 +137,7 @@ fn cs_big(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: v
     for (var tile = wg.y; tile < tiles.x * tiles.y; tile += view.limits.z) {
         let p = big_texel(bb, tiles, tile, lid.xy);
         if (p.x <= bb.z && p.y <= bb.w) {
-            write_texel(u32(p.x), u32(p.y), t.a.xyz, t.b.xyz, t.c.xyz, inv_area, t.payload.x);
+            write_texel(u32(p.x), u32(p.y), t.a, t.b, t.c, inv_area, t.payload.x);
         }
     }
 }

@@ -4,12 +4,16 @@
 //! (a desk) is seen along its thin axis, the manual "world up" alignment the thesis used for
 //! its desk, chosen here automatically. With `intersection = "cube"` or `"layered-cube"`
 //! (spec §2.14, §2.15) each pair has six slices instead: the faces of a 90° cube map at the
-//! traced instance's centre, in the order of `scene_gpu::cube_faces`.
+//! traced instance's centre, in the order of `scene_gpu::cube_faces`. With `"planar"` (spec
+//! §2.13) each flat reflector also has the view of its mirrored camera (two for a real one:
+//! the whole world and the real-only one), after the pairs' slices, at the frame's size.
 
+use super::planar::{self, Reflector};
 use crate::raster::{Casters, RasterView, Rasterizer};
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
+use mrshade_core::flags::Realness;
 use mrshade_core::settings::{Intersection, SpecularSettings};
 use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::Recorder;
@@ -22,9 +26,10 @@ pub struct GpuImpostor {
     /// Orthographic (an impostor) or one cube face's perspective, reversed depth (near → 1).
     pub clip_from_world: Mat4,
     /// Instance drawn, first texel of its slice, side in texels, unused.
+    /// (a planar view: reflector, first texel, width, height).
     pub info: UVec4,
     /// Cube faces: the traced instance's centre, where the cube is; w: the faces' near plane
-    /// (0 for an impostor).
+    /// (0 for an impostor). A planar view: its clip plane.
     pub eye: Vec4,
     /// The drawn instance's world box, where a layered cube is marched (w unused).
     pub seen_min: Vec4,
@@ -39,7 +44,7 @@ const FLAT_RATIO: f32 = 0.25;
 /// Slices per (traced instance, seen instance) pair: 1 impostor or 6 cube faces.
 pub fn slices_per_pair(intersection: Intersection) -> u32 {
     match intersection {
-        Intersection::Impostor => 1,
+        Intersection::Impostor | Intersection::Planar => 1,
         Intersection::Cube | Intersection::LayeredCube => 6,
     }
 }
@@ -47,7 +52,7 @@ pub fn slices_per_pair(intersection: Intersection) -> u32 {
 /// Side of each slice, texels.
 pub fn slice_resolution(settings: &SpecularSettings) -> u32 {
     match settings.intersection {
-        Intersection::Impostor => settings.impostor_resolution,
+        Intersection::Impostor | Intersection::Planar => settings.impostor_resolution,
         Intersection::Cube | Intersection::LayeredCube => settings.cube_resolution,
     }
 }
@@ -68,16 +73,39 @@ pub struct Impostors {
     pub ranges: Vec<(u32, u32)>,
     /// The slices no longer show where the instances are (at first, and after a move).
     stale: bool,
+    /// The flat reflectors and the first of their views (index into `planar_views`).
+    reflectors: Vec<(Reflector, usize)>,
+    /// The mirrored cameras' views, in table order after the pairs' slices.
+    planar_views: Vec<RasterView>,
+    /// Per instance: its planar views' slices (whole world, real-only), or `u32::MAX`.
+    pub planar_slices: Vec<[u32; 2]>,
+    /// The camera the planar views were drawn for (`None`: not yet, or a reflector moved).
+    planar_camera: Option<Mat4>,
+    planar_stale: bool,
+}
+
+/// Byte offsets of views in one buffer are aligned to this (storage-binding offsets).
+const VIEW_ALIGN: u64 = 256;
+
+/// Bytes of one planar view at the frame's `size`, aligned for the next one.
+pub fn planar_view_bytes(size: (u32, u32)) -> u64 {
+    (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(VIEW_ALIGN)
 }
 
 impl Impostors {
-    /// The slices of every (traced instance, other instance) pair, `resolution²` texels each.
+    /// The slices of every (traced instance, other instance) pair, `resolution²` texels each,
+    /// then the views of the flat `reflectors` at the frame's `size` (perspective, clipped at
+    /// the camera's `near` plane).
+    #[allow(clippy::too_many_arguments, reason = "the slices of the pairs and of the planar reflectors")]
     pub fn new(
         ctx: &GpuContext,
         rasterizer: &Rasterizer,
         geometry: &Geometry,
         traced: &[bool],
         settings: &SpecularSettings,
+        reflectors: &[Reflector],
+        size: (u32, u32),
+        near: f32,
     ) -> Self {
         let n = geometry.instance_count();
         let per_pair = slices_per_pair(settings.intersection);
@@ -90,9 +118,12 @@ impl Impostors {
         }
         let slice = resolution as u64 * resolution as u64;
         let slices = pairs.len() as u64 * per_pair as u64;
+        let pair_bytes = (slices * slice * 8).next_multiple_of(VIEW_ALIGN);
+        let planar_count: u32 = reflectors.iter().map(Reflector::views).sum();
+        let view_bytes = planar_view_bytes(size);
         let texels = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("specular/impostor_texels"),
-            size: (slices.max(1) * slice * 8).max(8),
+            size: (pair_bytes + planar_count as u64 * view_bytes).max(8),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
@@ -114,12 +145,87 @@ impl Impostors {
                 )
             })
             .collect();
+        // The planar views: the mirrored cameras are set each frame (`update_planar`).
+        let first_planar = gpu.len() as u32;
+        let mut planar_views = Vec::new();
+        let mut planar_slices = vec![[u32::MAX; 2]; n];
+        let mut planar_table = Vec::new();
+        let mut placed = Vec::new();
+        for r in reflectors {
+            placed.push((*r, planar_views.len()));
+            let worlds: &[(Casters, usize)] =
+                if r.real { &[(Casters::All, 0), (Casters::Only(Realness::Real), 1)] } else { &[(Casters::All, 0)] };
+            for &(casters, k) in worlds {
+                let index = planar_views.len() as u64;
+                let offset = pair_bytes + index * view_bytes;
+                planar_slices[r.instance][k] = first_planar + index as u32;
+                planar_table.push(GpuImpostor {
+                    info: UVec4::new(r.instance as u32, (offset / 8) as u32, size.0, size.1),
+                    ..GpuImpostor::zeroed()
+                });
+                planar_views.push(rasterizer.view(
+                    ctx,
+                    geometry,
+                    &format!("specular/planar_{}_{k}", r.instance),
+                    size,
+                    casters,
+                    Mat4::IDENTITY,
+                    near,
+                    Some((&texels, offset)),
+                ));
+            }
+        }
+        let mut all = gpu;
+        all.extend(planar_table);
         let table = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("specular/impostors"),
-            contents: bytemuck::cast_slice(&pad(gpu)),
+            contents: bytemuck::cast_slice(&pad(all)),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
-        Self { pairs, intersection: settings.intersection, resolution, views, table, texels, ranges, stale: true }
+        Self {
+            pairs,
+            intersection: settings.intersection,
+            resolution,
+            views,
+            table,
+            texels,
+            ranges,
+            stale: true,
+            reflectors: placed,
+            planar_views,
+            planar_slices,
+            planar_camera: None,
+            planar_stale: false,
+        }
+    }
+
+    /// Aims every flat reflector's views at the camera `clip_from_world` (at `eye`) mirrored
+    /// about its plane, when the camera or an instance moved.
+    pub fn update_planar(&mut self, queue: &wgpu::Queue, geometry: &Geometry, clip_from_world: Mat4, eye: Vec3) {
+        if self.planar_views.is_empty() || (self.planar_camera == Some(clip_from_world) && !geometry.moved()) {
+            return;
+        }
+        self.planar_camera = Some(clip_from_world);
+        self.planar_stale = true;
+        let first_slice = self.views.len() as u64;
+        for &(r, first_view) in &self.reflectors {
+            let plane = planar::world_plane(geometry.transform(r.instance), r.object_plane);
+            let (lo, hi) = geometry.world_box(r.instance);
+            // Clears the mirror itself and what merely touches it by a hair of its size.
+            let margin = 1e-4 * (hi - lo).length();
+            let (mirrored, clip_plane) = planar::mirrored_view(clip_from_world, eye, plane, margin);
+            for k in 0..r.views() as usize {
+                let view = &mut self.planar_views[first_view + k];
+                view.set_clip_plane(clip_plane);
+                view.set_clip_from_world(queue, mirrored);
+                let index = first_slice + (first_view + k) as u64;
+                let size = std::mem::size_of::<GpuImpostor>() as u64;
+                // clip_from_world and, after info, the clip plane in `eye`.
+                queue.write_buffer(&self.table, index * size, bytemuck::bytes_of(&mirrored));
+                let eye_offset = std::mem::offset_of!(GpuImpostor, eye) as u64;
+                queue.write_buffer(&self.table, index * size + eye_offset, bytemuck::bytes_of(&clip_plane));
+            }
+        }
     }
 
     /// Fits every slice's camera to where the instances are now, if any moved or deformed
@@ -144,6 +250,10 @@ impl Impostors {
             rasterizer.record(rec, "specular/impostors", &self.views);
         }
         self.stale = false;
+        if self.planar_stale {
+            rasterizer.record(rec, "specular/planar", &self.planar_views);
+        }
+        self.planar_stale = false;
     }
 }
 
@@ -179,7 +289,9 @@ fn impostor_table(
             seen_max: seen.1.extend(0.0),
         };
         match intersection {
-            Intersection::Impostor => table.push(record(impostor_clip_from_world(traced, seen), Vec4::ZERO)),
+            Intersection::Impostor | Intersection::Planar => {
+                table.push(record(impostor_clip_from_world(traced, seen), Vec4::ZERO))
+            }
             Intersection::Cube | Intersection::LayeredCube => {
                 let eye = (traced.0 + traced.1) * 0.5;
                 // Nothing else is inside the traced instance: a near plane well within it.

@@ -11,11 +11,14 @@
 //! 4. caustics: photons of the punctual lights through the traced objects, splatted into a
 //!    caustic buffer (§2.17);
 //! 5. resolve: shading of the hit surfaces, back-projection into the photo and the
-//!    differential routing of each branch (§2.5–§2.9); the caustics on diffuse surfaces.
+//!    differential routing of each branch (§2.5–§2.9); the caustics on diffuse surfaces;
+//! 6. temporal smoothing of that light (§2.19).
 
 pub mod caustics;
 pub mod impostors;
 pub mod interior;
+pub mod planar;
+pub mod temporal;
 
 use crate::methods::PointLight;
 use crate::passes::direct::ShadowParams;
@@ -24,7 +27,7 @@ use crate::raster::{Casters, RasterView, Rasterizer};
 use crate::scene_gpu::{GpuProbe, GpuScene};
 use crate::uniforms::FrameUniforms;
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, UVec4, Vec4};
+use glam::{Mat4, UVec4, Vec3, Vec4};
 use impostors::Impostors;
 use interior::Interiors;
 use mrshade_core::Differential;
@@ -166,6 +169,9 @@ pub struct SpecularStage {
     resolve_groups: [wgpu::BindGroup; 3],
     /// Group 1 of the resolve, with the method's VPLs of either parity.
     resolve_scene_groups: [wgpu::BindGroup; 2],
+    /// Temporal smoothing of the resolve's light (off when `specular.temporal_weight` is 0:
+    /// the resolve then writes the output itself).
+    temporal: Option<temporal::SpecularTemporal>,
     size: (u32, u32),
 }
 
@@ -191,13 +197,14 @@ impl SpecularStage {
         }
         let ctx = inputs.ctx;
         let device = &ctx.device;
-        let impostors = Impostors::new(ctx, inputs.rasterizer, geometry, &traced, &settings);
+        let size = inputs.uniforms.internal_size();
+        let near = inputs.uniforms.exposure_env.z;
+        let reflectors = planar::reflectors(inputs.scene, &settings);
+        let impostors = Impostors::new(ctx, inputs.rasterizer, geometry, &traced, &settings, &reflectors, size, near);
 
         // Camera views: real-only, then one farthest-surface view per transmissive instance,
         // each at an aligned offset of one buffer.
-        let size = inputs.uniforms.internal_size();
         let clip = inputs.uniforms.clip_from_world;
-        let near = inputs.uniforms.exposure_env.z;
         let view_bytes = (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(256);
         let traced_instances: Vec<usize> = (0..traced.len()).filter(|&i| traced[i]).collect();
         let interiors = Interiors::new(device, inputs.scene, geometry, &traced_instances);
@@ -223,8 +230,16 @@ impl SpecularStage {
             near,
             None,
         )];
-        let mut owners: Vec<UVec4> =
-            impostors.ranges.iter().map(|&(first, count)| UVec4::new(first, count, NO_VIEW, 0)).collect();
+        // Per instance (`Owner` in tracing.wgsl): its slices, farthest-surface view and BVH
+        // flag; its planar views.
+        let mut owners: Vec<[UVec4; 2]> = impostors
+            .ranges
+            .iter()
+            .zip(&impostors.planar_slices)
+            .map(|(&(first, count), planar)| {
+                [UVec4::new(first, count, NO_VIEW, 0), UVec4::new(planar[0], planar[1], 0, 0)]
+            })
+            .collect();
         for (k, &i) in transmissive.iter().enumerate() {
             let (_, first, count) = geometry.instance_triangles(i);
             let label = format!("specular/farthest_{i}");
@@ -239,11 +254,11 @@ impl SpecularStage {
                 near,
                 target,
             ));
-            owners[i].z = (k as u64 * view_bytes / 8) as u32;
+            owners[i][0].z = (k as u64 * view_bytes / 8) as u32;
         }
         if settings.refraction == Refraction::Traced {
             for owner in &mut owners {
-                owner.w = 1;
+                owner[0].w = 1;
             }
         }
         let storage = |label: &str, contents: &[u8], usage| {
@@ -274,7 +289,8 @@ impl SpecularStage {
                 inputs.point_light.as_ref().map_or(1, |p| p.stride.max(1)),
                 (settings.internal_reflections == InternalReflections::Sampled) as u32,
                 match settings.intersection {
-                    Intersection::Impostor => 0,
+                    // Planar views are read through `Owner`; the rest is marched.
+                    Intersection::Impostor | Intersection::Planar => 0,
                     Intersection::Cube => 1,
                     Intersection::LayeredCube => 2,
                 },
@@ -410,6 +426,17 @@ impl SpecularStage {
             bind::sampler(6, cs, wgpu::SamplerBindingType::Filtering),
         ]);
         let resolve_probe = bind::layout(device, "specular/resolve_probe", &probe_entries);
+        let temporal = (settings.temporal_weight > 0.0).then(|| {
+            temporal::SpecularTemporal::new(
+                device,
+                inputs.frame,
+                &inputs.gbuffer.depth_motion,
+                inputs.output,
+                size,
+                settings.temporal_weight,
+            )
+        });
+        let resolved = temporal.as_ref().map_or(inputs.output, |t| &t.fresh);
         let resolve_output = bind::layout(
             device,
             "specular/resolve_output",
@@ -474,7 +501,7 @@ impl SpecularStage {
                 ]
                 .concat(),
             ),
-            bind::group(device, "specular/resolve_output", &resolve_output, &[TextureView(&inputs.output.view)]),
+            bind::group(device, "specular/resolve_output", &resolve_output, &[TextureView(&resolved.view)]),
         ];
         let resolve = mrshade_gpu::shader::compute_pipeline(
             device,
@@ -494,14 +521,28 @@ impl SpecularStage {
             resolve,
             resolve_groups,
             resolve_scene_groups,
+            temporal,
             size,
         })
     }
 
-    /// Moves the impostor cameras to where the instances are and the camera views to
-    /// `clip_from_world` (this frame's camera, jittered like the G-buffer's).
-    pub fn prepare(&mut self, queue: &wgpu::Queue, geometry: &crate::scene_gpu::Geometry, clip_from_world: Mat4) {
+    /// Moves the impostor cameras to where the instances are and the camera views (and the
+    /// planar reflectors' mirrored cameras) to `clip_from_world` at `eye` (this frame's
+    /// camera, jittered like the G-buffer's); `changed`: the camera, an instance, a light or
+    /// the photo changed since the last frame (the temporal smoothing's weights).
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        geometry: &crate::scene_gpu::Geometry,
+        clip_from_world: Mat4,
+        eye: Vec3,
+        changed: bool,
+    ) {
+        if let Some(temporal) = &mut self.temporal {
+            temporal.prepare(queue, changed);
+        }
         self.impostors.update(queue, geometry);
+        self.impostors.update_planar(queue, geometry, clip_from_world, eye);
         self.interiors.update(queue, geometry);
         if let Some(caustics) = &self.caustics {
             caustics.prepare(queue, geometry);
@@ -538,6 +579,23 @@ impl SpecularStage {
             }
             pass.dispatch_workgroups(w, h, 1);
         });
+        if let Some(temporal) = &mut self.temporal {
+            temporal.record(rec);
+        }
+    }
+
+    /// Forgets the temporal history (a seek).
+    pub fn seek(&mut self) {
+        if let Some(temporal) = &mut self.temporal {
+            temporal.reset();
+        }
+    }
+
+    /// Turns the temporal smoothing off while `paused` (see `SpecularTemporal::pause`).
+    pub fn pause_smoothing(&mut self, paused: bool) {
+        if let Some(temporal) = &mut self.temporal {
+            temporal.pause(paused);
+        }
     }
 }
 

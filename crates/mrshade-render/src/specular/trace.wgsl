@@ -174,11 +174,17 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     // A dielectric reflects a few percent: its self-reflections are not worth a BVH traversal.
     let transmission = m.transmission.x * (1.0 - s.metallic);
     let sees_self = transmission <= 0.0;
-    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self), s.roughness);
+    // A smooth reflection off a planar reflector is its mirrored camera's ray (spec §2.13).
+    var planar = owners[owner].planar;
+    let plane = impostors[min(planar.x, arrayLength(&impostors) - 1u)].eye.xyz;
+    if (planar.x == NO_VIEW || any(n != s.normal) || abs(dot(s.normal, plane)) < 0.9999) {
+        planar = vec4u(NO_VIEW);
+    }
+    var reflection = glossy_miss(trace_ray(p1, reflected, owner, false, sees_self, planar.x), s.roughness);
     reflection.weight *= specular_albedo * occlusion;
     store_branch(pixel, false, reflection);
     if (real_pixel) {
-        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self), s.roughness);
+        let real_end = glossy_miss(trace_ray(p1, reflected, owner, true, sees_self, planar.y), s.roughness);
         textureStore(out_reflection_real_hit, pixel, hit_texel(real_end));
     }
 
@@ -194,9 +200,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     } else {
         exit = refraction_exit(pixel, p1, view_dir, n, ior, owners[owner].info.z);
     }
-    var refraction = trace_ray(exit.position, exit.dir, owner, false, true);
+    var refraction = trace_ray(exit.position, exit.dir, owner, false, true, NO_VIEW);
     if (real_pixel) {
-        textureStore(out_refraction_real_hit, pixel, hit_texel(trace_ray(exit.position, exit.dir, owner, true, true)));
+        textureStore(out_refraction_real_hit, pixel, hit_texel(trace_ray(exit.position, exit.dir, owner, true, true, NO_VIEW)));
     }
     refraction.weight *= transmission * (vec3f(1.0) - specular_albedo) * exit_transmittance(m, s.base_color, exit, ior)
         * occlusion;

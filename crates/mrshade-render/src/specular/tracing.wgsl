@@ -42,9 +42,12 @@ struct Impostor {
 }
 
 // Per instance: first impostor and impostor count of its set (0 if not traced), first texel of
-// its farthest-surface view (NO_VIEW if none), 1 if refraction is traced through its BVH.
+// its farthest-surface view (NO_VIEW if none), 1 if refraction is traced through its BVH;
+// its planar views (spec §2.13): the slice of the whole world's and of the real-only
+// world's mirrored camera (NO_VIEW if none), unused…
 struct Owner {
     info: vec4u,
+    planar: vec4u,
 }
 
 const NO_VIEW: u32 = 0xffffffffu;
@@ -192,6 +195,25 @@ fn lookup_cube(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
     return vec2f(f32(texel.x), h.t);
 }
 
+// Planar reflection (spec §2.13): the surface that the mirrored camera of planar view `slice`
+// sees through the point `origin` of its plane, met by the ray (`dir`, the camera ray's mirror
+// image: the view's ray through that pixel): (triangle + 1, t), or triangle 0 where the view
+// shows nothing (the ray leaves the scene).
+fn lookup_planar(slice: u32, origin: vec3f, dir: vec3f) -> vec2f {
+    let view = impostors[slice];
+    let clip = view.clip_from_world * vec4f(origin, 1.0);
+    if (clip.w <= 0.0) { return vec2f(0.0); }
+    let size = view.info.zw;
+    let uv = vec2f(clip.x / clip.w * 0.5 + 0.5, 0.5 - clip.y / clip.w * 0.5);
+    let xy = vec2i(floor(uv * vec2f(size)));
+    if (any(xy < vec2i(0)) || any(xy >= vec2i(size))) { return vec2f(0.0); }
+    let texel = impostor_texels[view.info.y + u32(xy.y) * size.x + u32(xy.x)];
+    if (texel.x == 0u) { return vec2f(0.0); }
+    let h = intersect(texel.x - 1u, origin, dir);
+    if (h.t <= 0.0) { return vec2f(0.0); }
+    return vec2f(f32(texel.x), h.t);
+}
+
 // The nearest surface of the pair whose slices start at `k`, by `specular.intersection`.
 fn intersect_pair(k: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
     if (params.more.w == INTERSECTION_CUBE) { return lookup_cube(k, origin, dir, t_max); }
@@ -213,8 +235,9 @@ fn fresnel_ior(ior: f32, cos_i: f32) -> f32 {
 // transmittance; the path flag FlagPathRV is not kept, as routing reads only the flags of
 // the light → hit-surface part, §2.5; a refractive second-order hit is bent at its first
 // boundary only, spec §2.16.3). `real_only` sees only real instances (the `L_r` world);
-// `first_sees_self` tests the first segment against the object itself too.
-fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self: bool) -> RayEnd {
+// `first_sees_self` tests the first segment against the object itself too; `planar`, a planar
+// view (or NO_VIEW), finds the first segment's surface instead of the slices.
+fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self: bool, planar: u32) -> RayEnd {
     var end = RayEnd(0u, origin, dir, 0.0, vec3f(1.0), 0.0);
     var o = origin;
     var d = dir;
@@ -222,6 +245,12 @@ fn trace_ray(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_
     var current = owner;
     for (var bounce = 0u; bounce <= params.steps.w; bounce++) {
         var best = vec2f(0.0, 3.0e38);
+        if (bounce == 0u && planar != NO_VIEW) {
+            // A plane cannot see itself: no self test either.
+            let hit = lookup_planar(planar, o, d);
+            if (hit.x > 0.0) { best = hit; }
+            range.y = 0u;
+        }
         let per_pair = select(6u, 1u, params.more.w == INTERSECTION_IMPOSTOR);
         for (var k = range.x; k < range.x + range.y; k += per_pair) {
             if (real_only && !instance_is_real(impostors[k].info.x)) { continue; }

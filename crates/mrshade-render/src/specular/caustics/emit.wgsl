@@ -105,7 +105,7 @@ fn first_caster(origin: vec3f, dir: vec3f) -> vec2f {
 fn land(origin: vec3f, dir: vec3f, owner: u32, real_only: bool, first_sees_self: bool, power: vec3f) -> Photon {
     var out: Photon;
     if (all(power <= vec3f(0.0))) { return out; }
-    let end = trace_ray(origin, dir, owner, real_only, first_sees_self);
+    let end = trace_ray(origin, dir, owner, real_only, first_sees_self, NO_VIEW);
     if (end.triangle == 0u) { return out; }
     let h = intersect(end.triangle - 1u, end.position - end.dir, end.dir);
     // A specular surface at the last bounce receives no caustic: it has no diffuse part.

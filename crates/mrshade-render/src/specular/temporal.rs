@@ -1,0 +1,166 @@
+//! Temporal smoothing of the specular stage's light (spec §2.19; the filter is ours, see
+//! temporal.wgsl): the resolve writes this frame's light into `fresh`; the smoothing blends
+//! in the last frame's result (`history`) and writes what the composite reads.
+
+use bytemuck::{Pod, Zeroable};
+use glam::Vec4;
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{Target, bind, wgsl};
+use wgpu::util::DeviceExt;
+
+/// Mirrors `TemporalParams` in temporal.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct TemporalParams {
+    info: Vec4,
+}
+
+/// The running mean over still frames stops growing here (its weight 1 − 1/n).
+const STILL_FRAMES_MAX: u32 = 1024;
+
+/// The smoothing pass and its two textures.
+pub struct SpecularTemporal {
+    /// Where the resolve writes this frame's light.
+    pub fresh: Target,
+    history: Target,
+    /// What the composite reads (copied into `history` after each frame).
+    output: wgpu::Texture,
+    size: (u32, u32),
+    pipeline: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    /// History weight on frames where something changed.
+    weight: f32,
+    /// Frames the history holds since the last change (0: no history).
+    still_frames: u32,
+    has_history: bool,
+    /// Stills average their own frames: the smoothing passes the light through.
+    paused: bool,
+}
+
+impl SpecularTemporal {
+    /// GPU timing label.
+    pub const LABEL: &'static str = "specular/temporal";
+
+    /// The pass for a frame of `size`, smoothing into `output` with `weight` (the setting
+    /// `specular.temporal_weight`).
+    pub fn new(
+        device: &wgpu::Device,
+        frame: &wgpu::Buffer,
+        depth_motion: &Target,
+        output: &Target,
+        size: (u32, u32),
+        weight: f32,
+    ) -> Self {
+        let usage =
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
+        let format = output.texture.format();
+        let fresh = Target::new_2d(device, "specular/light_fresh", size, format, usage);
+        let history = Target::new_2d(
+            device,
+            "specular/light_history",
+            size,
+            format,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("specular/temporal_params"),
+            contents: bytemuck::bytes_of(&TemporalParams::zeroed()),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let d2 = wgpu::TextureViewDimension::D2;
+        let layout = bind::layout(
+            device,
+            "specular/temporal",
+            &[
+                bind::uniform(0, cs),
+                bind::uniform(1, cs),
+                bind::texture(2, cs, unfilterable, d2),
+                bind::texture(3, cs, unfilterable, d2),
+                bind::texture(4, cs, unfilterable, d2),
+                bind::storage_texture(5, format),
+            ],
+        );
+        use wgpu::BindingResource::TextureView;
+        let group = bind::group(
+            device,
+            "specular/temporal",
+            &layout,
+            &[
+                frame.as_entire_binding(),
+                params.as_entire_binding(),
+                TextureView(&depth_motion.view),
+                TextureView(&fresh.view),
+                TextureView(&history.view),
+                TextureView(&output.view),
+            ],
+        );
+        let pipeline = mrshade_gpu::shader::compute_pipeline(device, Self::LABEL, SHADER, &[&layout]);
+        let output = output.texture.clone();
+        Self {
+            fresh,
+            history,
+            output,
+            size,
+            pipeline,
+            params,
+            group,
+            weight,
+            still_frames: 0,
+            has_history: false,
+            paused: false,
+        }
+    }
+
+    /// Sets this frame's weights: `weight` and the window clamp when the camera, an instance,
+    /// a light or the photo `changed` since the last frame, else the running mean of the
+    /// still frames.
+    pub fn prepare(&mut self, queue: &wgpu::Queue, changed: bool) {
+        let (weight, clamp) = if changed {
+            self.still_frames = 1;
+            (self.weight, 1.0)
+        } else {
+            self.still_frames = (self.still_frames + 1).min(STILL_FRAMES_MAX);
+            (1.0 - 1.0 / self.still_frames as f32, 0.0)
+        };
+        let has = if self.has_history && !self.paused { 1.0 } else { 0.0 };
+        queue.write_buffer(
+            &self.params,
+            0,
+            bytemuck::bytes_of(&TemporalParams { info: Vec4::new(weight, clamp, has, 0.0) }),
+        );
+    }
+
+    /// Smooths `fresh` into the output and keeps the result for the next frame.
+    pub fn record(&mut self, rec: &mut Recorder) {
+        rec.compute(Self::LABEL, |pass| {
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.group, &[]);
+            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
+        });
+        rec.encoder.copy_texture_to_texture(
+            self.output.as_image_copy(),
+            self.history.texture.as_image_copy(),
+            self.history.texture.size(),
+        );
+        self.has_history = true;
+    }
+
+    /// Forgets the history (a seek).
+    pub fn reset(&mut self) {
+        self.has_history = false;
+        self.still_frames = 0;
+    }
+
+    /// Passes the light through unsmoothed while `paused` (a still image averages its frames
+    /// itself, without the bias of a running mean that starts before the method converged).
+    pub fn pause(&mut self, paused: bool) {
+        self.paused = paused;
+        self.reset();
+    }
+}
+
+/// The composed WGSL module.
+pub const SHADER: &str = wgsl!("../../shaders/lib/frame.wgsl", "temporal.wgsl");
