@@ -34,15 +34,20 @@ impl Renderer {
         let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
         let mut mean = Average::default();
         // The average is the still's own smoothing of the specular light (unbiased).
-        if let Some(specular) = &mut self.specular {
-            specular.pause_smoothing(true);
-        }
+        self.pause_specular_smoothing(true);
         let result = self.average_frames(ctx, &mut profiler, frames, averaged, inputs, &mut mean, &mut progress);
-        if let Some(specular) = &mut self.specular {
-            specular.pause_smoothing(false);
-        }
+        self.pause_specular_smoothing(false);
         result?;
         mean.finish()
+    }
+
+    /// Turns the specular stage's temporal smoothing off while `paused`: where frames are
+    /// averaged (stills, footage of several samples a frame), the average smooths without the
+    /// bias of a running mean that began before the method converged.
+    pub(crate) fn pause_specular_smoothing(&mut self, paused: bool) {
+        if let Some(specular) = &mut self.specular {
+            specular.pause_smoothing(paused);
+        }
     }
 
     #[allow(clippy::too_many_arguments, reason = "the still's loop, apart from its set-up")]

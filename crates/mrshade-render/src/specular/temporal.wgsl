@@ -20,6 +20,13 @@ struct TemporalParams {
 @group(0) @binding(3) var new_light: texture_2d<f32>;
 @group(0) @binding(4) var history: texture_2d<f32>;
 @group(0) @binding(5) var out_light: texture_storage_2d<rgba16float, write>;
+// The same result, read as `history` next frame.
+@group(0) @binding(6) var out_history: texture_storage_2d<rgba16float, write>;
+
+fn store(pixel: vec2i, v: vec4f) {
+    textureStore(out_light, pixel, v);
+    textureStore(out_history, pixel, v);
+}
 
 fn is_traced_value(v: vec4f) -> bool {
     return v.a > 0.5;
@@ -61,21 +68,21 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let dm = textureLoad(gbuffer_depth_motion, pixel, 0);
     // No history, or no surface here (the stage wrote nothing of its own).
     if (params.info.z == 0.0 || dm.x == 0.0) {
-        textureStore(out_light, pixel, value);
+        store(pixel, value);
         return;
     }
     let q = vec2i(floor(vec2f(pixel) + 0.5 + dm.yz));
     if (any(q < vec2i(0)) || any(q >= vec2i(frame.size.xy))) {
-        textureStore(out_light, pixel, value);
+        store(pixel, value);
         return;
     }
     var h = textureLoad(history, q, 0);
     if (is_traced_value(h) != is_traced_value(value)) {
-        textureStore(out_light, pixel, value);
+        store(pixel, value);
         return;
     }
     if (params.info.y > 0.5) {
         h = clamp_to_window(pixel, value, h);
     }
-    textureStore(out_light, pixel, mix(value, h, params.info.x));
+    store(pixel, mix(value, h, params.info.x));
 }
