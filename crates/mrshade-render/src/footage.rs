@@ -113,68 +113,42 @@ impl Renderer {
         let settle = session.output.frames / 2;
         let samples = session.sequence.as_ref().map_or(1, |seq| seq.samples);
         // Several samples a frame are averaged: the specular light's smoothing stays off.
-        self.pause_specular_smoothing(samples > 1);
-        let played = self.play_frames(
-            ctx,
-            session,
-            start..written.end,
-            written.start,
-            settle,
-            samples,
-            &mut progress,
-            &mut each,
-        );
-        self.pause_specular_smoothing(false);
-        played
-    }
-
-    #[allow(clippy::too_many_arguments, reason = "the playback loop, apart from its set-up")]
-    fn play_frames(
-        &mut self,
-        ctx: &GpuContext,
-        session: &Session,
-        frames: Range<usize>,
-        first_written: usize,
-        settle: u32,
-        samples: u32,
-        progress: &mut impl FnMut(usize),
-        each: &mut impl FnMut(&Renderer, &FrameData, &Composite) -> Result<()>,
-    ) -> Result<()> {
-        let (start, end) = (frames.start, frames.end);
-        let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
-        // Renderer frames are numbered as in the whole run (footage frame k's samples follow
-        // the settling frames and k × samples others): a range draws the whole run's samples.
-        self.seek(start as u32 * samples);
-        let first = FrameData::load(session, start)?;
-        for i in 0..settle {
-            let inputs = if i == 0 { first.inputs() } else { FrameInputs::camera(first.camera) };
-            self.render_untimed(ctx, &mut profiler, &inputs)?;
-        }
-        for k in start..end {
-            let loaded = if k == start { None } else { Some(FrameData::load(session, k)?) };
-            let data = loaded.as_ref().unwrap_or(&first);
-            let write = k >= first_written;
-            let mut mean = Average::default();
-            for s in 0..samples {
-                // The frame's own inputs once; its jittered samples (anti-aliasing) keep them.
-                let inputs = if s == 0 && !(k == start && settle > 0) {
-                    data.inputs()
-                } else {
-                    FrameInputs::camera(data.camera)
-                };
-                let jitter = if samples > 1 { jitter(s + 1) } else { glam::Vec2::ZERO };
-                self.render_untimed(ctx, &mut profiler, &FrameInputs { jitter, ..inputs })?;
+        self.with_specular_smoothing_paused(samples > 1, |renderer| {
+            let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
+            // Renderer frames are numbered as in the whole run (footage frame k's samples follow
+            // the settling frames and k × samples others): a range draws the whole run's samples.
+            renderer.seek(start as u32 * samples);
+            let first = FrameData::load(session, start)?;
+            for i in 0..settle {
+                let inputs = if i == 0 { first.inputs() } else { FrameInputs::camera(first.camera) };
+                renderer.render_untimed(ctx, &mut profiler, &inputs)?;
+            }
+            for k in start..written.end {
+                let loaded = if k == start { None } else { Some(FrameData::load(session, k)?) };
+                let data = loaded.as_ref().unwrap_or(&first);
+                let write = k >= written.start;
+                let mut mean = Average::default();
+                for s in 0..samples {
+                    // The frame's own inputs once; its jittered samples (anti-aliasing) keep them.
+                    let inputs = if s == 0 && !(k == start && settle > 0) {
+                        data.inputs()
+                    } else {
+                        FrameInputs::camera(data.camera)
+                    };
+                    let jitter = if samples > 1 { jitter(s + 1) } else { glam::Vec2::ZERO };
+                    renderer.render_untimed(ctx, &mut profiler, &FrameInputs { jitter, ..inputs })?;
+                    if write {
+                        mean.add(renderer.read_composite(ctx)?);
+                    }
+                }
+                progress(k + 1 - start);
                 if write {
-                    mean.add(self.read_composite(ctx)?);
+                    let composite = mean.finish().with_context(|| format!("frame {}", data.name))?;
+                    each(renderer, data, &composite)?;
                 }
             }
-            progress(k + 1 - start);
-            if write {
-                let composite = mean.finish().with_context(|| format!("frame {}", data.name))?;
-                each(self, data, &composite)?;
-            }
-        }
-        Ok(())
+            Ok(())
+        })
     }
 }
 

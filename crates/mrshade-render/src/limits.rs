@@ -200,7 +200,7 @@ fn specular_slices(scene: &Scene, specular: &SpecularSettings) -> u64 {
 fn planar_bytes(scene: &Scene, specular: &SpecularSettings, output: &OutputSize) -> u64 {
     let views: u32 = crate::specular::planar::reflectors(scene, specular).iter().map(|r| r.views()).sum();
     let ss = output.supersample;
-    views as u64 * crate::specular::impostors::planar_view_bytes((output.width * ss, output.height * ss))
+    views as u64 * crate::raster::shared_view_bytes((output.width * ss, output.height * ss))
 }
 
 /// The scene's own buffers and textures: geometry in single bindings, textures in two arrays.

@@ -34,48 +34,43 @@ impl Renderer {
         let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
         let mut mean = Average::default();
         // The average is the still's own smoothing of the specular light (unbiased).
-        self.pause_specular_smoothing(true);
-        let result = self.average_frames(ctx, &mut profiler, frames, averaged, inputs, &mut mean, &mut progress);
-        self.pause_specular_smoothing(false);
-        result?;
+        self.with_specular_smoothing_paused(true, |renderer| {
+            for i in 0..frames {
+                let averaging = i + averaged >= frames;
+                // Sub-pixel jitter over the averaged frames: their mean is an anti-aliased image,
+                // as a path tracer's pixel is; the temporal smoothing follows the jitter through
+                // the motion vectors.
+                let jitter = if averaging && averaged > 1 { jitter((i + averaged + 1) - frames) } else { Vec2::ZERO };
+                // The photo and transforms are uploaded once; later frames keep them.
+                let frame = if i == 0 { *inputs } else { FrameInputs::camera(inputs.camera) };
+                renderer.render_untimed(ctx, &mut profiler, &FrameInputs { jitter, ..frame })?;
+                progress(i + 1);
+                if averaging {
+                    mean.add(renderer.read_composite(ctx)?);
+                }
+            }
+            Ok(())
+        })?;
         mean.finish()
     }
 
-    /// Turns the specular stage's temporal smoothing off while `paused`: where frames are
-    /// averaged (stills, footage of several samples a frame), the average smooths without the
-    /// bias of a running mean that began before the method converged.
-    pub(crate) fn pause_specular_smoothing(&mut self, paused: bool) {
+    /// Runs `f` with the specular stage's temporal smoothing off while `paused` (then on
+    /// again): where frames are averaged (stills, footage of several samples a frame), the
+    /// average smooths without the bias of a running mean that began before the method
+    /// converged.
+    pub(crate) fn with_specular_smoothing_paused<T>(
+        &mut self,
+        paused: bool,
+        f: impl FnOnce(&mut Self) -> Result<T>,
+    ) -> Result<T> {
         if let Some(specular) = &mut self.specular {
             specular.pause_smoothing(paused);
         }
-    }
-
-    #[allow(clippy::too_many_arguments, reason = "the still's loop, apart from its set-up")]
-    fn average_frames(
-        &mut self,
-        ctx: &GpuContext,
-        profiler: &mut wgpu_profiler::GpuProfiler,
-        frames: u32,
-        averaged: u32,
-        inputs: &FrameInputs,
-        mean: &mut Average,
-        progress: &mut impl FnMut(u32),
-    ) -> Result<()> {
-        for i in 0..frames {
-            let averaging = i + averaged >= frames;
-            // Sub-pixel jitter over the averaged frames: their mean is an anti-aliased image,
-            // as a path tracer's pixel is; the temporal smoothing follows the jitter through
-            // the motion vectors.
-            let jitter = if averaging && averaged > 1 { jitter((i + averaged + 1) - frames) } else { Vec2::ZERO };
-            // The photo and transforms are uploaded once; later frames keep them.
-            let frame = if i == 0 { *inputs } else { FrameInputs::camera(inputs.camera) };
-            self.render_untimed(ctx, profiler, &FrameInputs { jitter, ..frame })?;
-            progress(i + 1);
-            if averaging {
-                mean.add(self.read_composite(ctx)?);
-            }
+        let result = f(self);
+        if let Some(specular) = &mut self.specular {
+            specular.pause_smoothing(false);
         }
-        Ok(())
+        result
     }
 
     /// Renders `frames` untimed frames of the session's own view, calling `progress(i)` after

@@ -46,6 +46,14 @@ struct ViewUniform {
     clip_plane: Vec4,
 }
 
+/// Byte offsets of views that share one buffer are aligned to this (storage-binding offsets).
+pub const VIEW_ALIGN: u64 = 256;
+
+/// Bytes of a view of `size` texels in a buffer shared with others, aligned for the next one.
+pub fn shared_view_bytes(size: (u32, u32)) -> u64 {
+    (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(VIEW_ALIGN)
+}
+
 /// Triangles whose bounding box covers more pixels than this are shared by a workgroup.
 const SMALL_TRIANGLE_PIXELS: u32 = 256;
 /// Workgroups per big triangle (each takes every `BIG_TILE_STRIDE`-th 16×16 tile).

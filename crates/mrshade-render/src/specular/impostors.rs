@@ -9,7 +9,7 @@
 //! the whole world and the real-only one), after the pairs' slices, at the frame's size.
 
 use super::planar::{self, Reflector};
-use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::raster::{Casters, RasterView, Rasterizer, VIEW_ALIGN, shared_view_bytes};
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
@@ -84,14 +84,6 @@ pub struct Impostors {
     planar_stale: bool,
 }
 
-/// Byte offsets of views in one buffer are aligned to this (storage-binding offsets).
-const VIEW_ALIGN: u64 = 256;
-
-/// Bytes of one planar view at the frame's `size`, aligned for the next one.
-pub fn planar_view_bytes(size: (u32, u32)) -> u64 {
-    (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(VIEW_ALIGN)
-}
-
 impl Impostors {
     /// The slices of every (traced instance, other instance) pair, `resolution²` texels each,
     /// then the views of the flat `reflectors` at the frame's `size` (perspective, clipped at
@@ -120,7 +112,7 @@ impl Impostors {
         let slices = pairs.len() as u64 * per_pair as u64;
         let pair_bytes = (slices * slice * 8).next_multiple_of(VIEW_ALIGN);
         let planar_count: u32 = reflectors.iter().map(Reflector::views).sum();
-        let view_bytes = planar_view_bytes(size);
+        let view_bytes = shared_view_bytes(size);
         let texels = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("specular/impostor_texels"),
             size: (pair_bytes + planar_count as u64 * view_bytes).max(8),
@@ -208,6 +200,8 @@ impl Impostors {
         self.planar_camera = Some(clip_from_world);
         self.planar_stale = true;
         let first_slice = self.views.len() as u64;
+        let record_bytes = std::mem::size_of::<GpuImpostor>() as u64;
+        let eye_offset = std::mem::offset_of!(GpuImpostor, eye) as u64;
         for &(r, first_view) in &self.reflectors {
             let plane = planar::world_plane(geometry.transform(r.instance), r.object_plane);
             let (lo, hi) = geometry.world_box(r.instance);
@@ -218,12 +212,10 @@ impl Impostors {
                 let view = &mut self.planar_views[first_view + k];
                 view.set_clip_plane(clip_plane);
                 view.set_clip_from_world(queue, mirrored);
-                let index = first_slice + (first_view + k) as u64;
-                let size = std::mem::size_of::<GpuImpostor>() as u64;
                 // clip_from_world and, after info, the clip plane in `eye`.
-                queue.write_buffer(&self.table, index * size, bytemuck::bytes_of(&mirrored));
-                let eye_offset = std::mem::offset_of!(GpuImpostor, eye) as u64;
-                queue.write_buffer(&self.table, index * size + eye_offset, bytemuck::bytes_of(&clip_plane));
+                let record = (first_slice + (first_view + k) as u64) * record_bytes;
+                queue.write_buffer(&self.table, record, bytemuck::bytes_of(&mirrored));
+                queue.write_buffer(&self.table, record + eye_offset, bytemuck::bytes_of(&clip_plane));
             }
         }
     }
