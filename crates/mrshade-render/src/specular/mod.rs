@@ -15,6 +15,7 @@
 //! 6. temporal smoothing of that light (§2.19).
 
 pub mod caustics;
+mod gbuffers;
 pub mod impostors;
 pub mod interior;
 pub mod planar;
@@ -27,6 +28,7 @@ use crate::raster::{Casters, RasterView, Rasterizer};
 use crate::scene_gpu::{GpuProbe, GpuScene};
 use crate::uniforms::FrameUniforms;
 use bytemuck::{Pod, Zeroable};
+pub use gbuffers::SpecularGBuffers;
 use glam::{Mat4, UVec4, Vec3, Vec4};
 use impostors::Impostors;
 use interior::Interiors;
@@ -95,59 +97,6 @@ pub struct SpecularInputs<'a> {
     pub output: &'a Target,
 }
 
-/// The reflection and refraction G-buffers of one frame (the stage's AOVs).
-pub struct SpecularGBuffers {
-    /// Hit position and triangle + 1 (0: left the scene; xyz is then the direction).
-    pub reflection_hit: Target,
-    /// Last ray direction; w: the roughness the probe is looked up with if the ray left.
-    pub reflection_dir: Target,
-    /// Accumulated Fresnel · transmittance (rgb), 1 in w where traced.
-    pub reflection_weight: Target,
-    /// The refraction branch's hit, as `reflection_hit`.
-    pub refraction_hit: Target,
-    /// The refraction branch's direction, as `reflection_dir`.
-    pub refraction_dir: Target,
-    /// The refraction branch's weight, as `reflection_weight`.
-    pub refraction_weight: Target,
-    /// Real pixels: where the same reflected ray ends in the real-only world.
-    pub reflection_real_hit: Target,
-    /// Real pixels: where the same refracted ray ends in the real-only world.
-    pub refraction_real_hit: Target,
-}
-
-impl SpecularGBuffers {
-    fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
-        let usage =
-            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
-        let wide = wgpu::TextureFormat::Rgba32Float;
-        let half = wgpu::TextureFormat::Rgba16Float;
-        let t = |label: &str, format| Target::new_2d(device, &format!("specular/{label}"), size, format, usage);
-        Self {
-            reflection_hit: t("reflection_hit", wide),
-            reflection_dir: t("reflection_dir", half),
-            reflection_weight: t("reflection_weight", half),
-            refraction_hit: t("refraction_hit", wide),
-            refraction_dir: t("refraction_dir", half),
-            refraction_weight: t("refraction_weight", half),
-            reflection_real_hit: t("reflection_real_hit", wide),
-            refraction_real_hit: t("refraction_real_hit", wide),
-        }
-    }
-
-    fn all(&self) -> [&Target; 8] {
-        [
-            &self.reflection_hit,
-            &self.reflection_dir,
-            &self.reflection_weight,
-            &self.refraction_hit,
-            &self.refraction_dir,
-            &self.refraction_weight,
-            &self.reflection_real_hit,
-            &self.refraction_real_hit,
-        ]
-    }
-}
-
 /// The stage: built only when the scene holds a traced material and the stage is on.
 pub struct SpecularStage {
     impostors: Impostors,
@@ -205,7 +154,7 @@ impl SpecularStage {
         // Camera views: real-only, then one farthest-surface view per transmissive instance,
         // each at an aligned offset of one buffer.
         let clip = inputs.uniforms.clip_from_world;
-        let view_bytes = (size.0 as u64 * size.1 as u64 * 8).next_multiple_of(256);
+        let view_bytes = crate::raster::shared_view_bytes(size);
         let traced_instances: Vec<usize> = (0..traced.len()).filter(|&i| traced[i]).collect();
         let interiors = Interiors::new(device, inputs.scene, geometry, &traced_instances);
         // Wyman's farthest surfaces, for the transmissive instances not traced through a BVH.
