@@ -6,17 +6,73 @@ use anyhow::Result;
 use wgpu_profiler::{GpuProfiler, GpuProfilerSettings, GpuTimerQueryResult};
 
 /// A command encoder whose passes are each a timed scope.
+///
+/// The GPU runs one pass after another (a pass waits for all the work before it), but the
+/// dispatches of one compute pass side by side where no barrier separates them. Work that
+/// reads nothing the passes before a *host* pass write can therefore be handed to
+/// [`Recorder::beside`]: the next [`Recorder::compute_hosting`] pass records it with its own
+/// dispatch, so that a chain of dependent reads on a few threads (the specular rays) fills
+/// the GPU beside a pass that has many threads (the method's shading).
 pub struct Recorder<'a> {
     /// The encoder passes are recorded into.
     pub encoder: wgpu::CommandEncoder,
     profiler: &'a mut GpuProfiler,
+    /// Jobs waiting for a host pass.
+    waiting: Vec<SideJob>,
+    /// Record every job as a pass of its own at once (`mrshade bench --serial`: per-pass
+    /// times).
+    serial: bool,
+}
+
+/// One compute dispatch, recorded later (see [`SideJob`]).
+#[derive(Clone, Debug)]
+pub struct Dispatch {
+    /// The pipeline.
+    pub pipeline: wgpu::ComputePipeline,
+    /// Bind groups 0, 1, …
+    pub groups: Vec<wgpu::BindGroup>,
+    /// Workgroups along x, y, z.
+    pub workgroups: [u32; 3],
+}
+
+impl Dispatch {
+    fn record(&self, pass: &mut wgpu::ComputePass) {
+        pass.set_pipeline(&self.pipeline);
+        for (i, g) in self.groups.iter().enumerate() {
+            pass.set_bind_group(i as u32, g, &[]);
+        }
+        let [x, y, z] = self.workgroups;
+        pass.dispatch_workgroups(x, y, z);
+    }
+}
+
+/// Dispatches that need nothing of the passes between where they are handed over and where
+/// their results are read, run beside a host pass (see [`Recorder`]).
+#[derive(Debug)]
+pub struct SideJob {
+    /// Its name in the timings (a host pass is named `host ∥ job`).
+    pub label: String,
+    /// Independent of each other and of the host's dispatches: recorded right after the
+    /// host's last dispatch, which they run beside (no barrier precedes a resource's first
+    /// use in a pass; barriers between the host's own dispatches would wait for them).
+    pub first: Vec<Dispatch>,
+    /// Reading what `first` wrote: recorded after it (a barrier before them waits for all
+    /// the pass's work so far).
+    pub then: Vec<Dispatch>,
 }
 
 impl<'a> Recorder<'a> {
     /// Starts recording a frame.
     pub fn new(ctx: &GpuContext, profiler: &'a mut GpuProfiler, label: &str) -> Self {
         let encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-        Self { encoder, profiler }
+        Self { encoder, profiler, waiting: Vec::new(), serial: false }
+    }
+
+    /// Records side jobs as passes of their own where they are handed over (per-pass times
+    /// instead of the fastest frame).
+    pub fn serial(mut self, serial: bool) -> Self {
+        self.serial = serial;
+        self
     }
 
     /// Records one compute pass named `label`.
@@ -31,6 +87,40 @@ impl<'a> Recorder<'a> {
         };
         self.profiler.end_query(&mut self.encoder, query);
         out
+    }
+
+    /// Hands `job` to the next host pass ([`Recorder::compute_hosting`]); its results may be
+    /// read after [`Recorder::flush_side_jobs`].
+    pub fn beside(&mut self, job: SideJob) {
+        self.waiting.push(job);
+        if self.serial {
+            self.flush_side_jobs();
+        }
+    }
+
+    /// A compute pass named `label` that also runs the waiting side jobs beside the last of
+    /// `f`'s dispatches.
+    pub fn compute_hosting<R>(&mut self, label: &str, f: impl FnOnce(&mut wgpu::ComputePass<'_>) -> R) -> R {
+        let jobs = std::mem::take(&mut self.waiting);
+        if jobs.is_empty() {
+            return self.compute(label, f);
+        }
+        let names: Vec<&str> = jobs.iter().map(|j| j.label.as_str()).collect();
+        let label = format!("{label} ∥ {}", names.join(" ∥ "));
+        self.compute(&label, |pass| {
+            let out = f(pass);
+            jobs.iter().flat_map(|j| &j.first).for_each(|d| d.record(pass));
+            jobs.iter().flat_map(|j| &j.then).for_each(|d| d.record(pass));
+            out
+        })
+    }
+
+    /// Records the side jobs no host took, each as a pass of its own: their results are
+    /// ready for the passes after this.
+    pub fn flush_side_jobs(&mut self) {
+        for job in std::mem::take(&mut self.waiting) {
+            self.compute(&job.label, |pass| job.first.iter().chain(&job.then).for_each(|d| d.record(pass)));
+        }
     }
 
     /// Records one render pass named `label` into the given attachments.
@@ -59,6 +149,7 @@ impl<'a> Recorder<'a> {
 
     /// Finishes the frame's commands (resolving its timestamps).
     pub fn finish(mut self) -> wgpu::CommandBuffer {
+        self.flush_side_jobs();
         self.profiler.resolve_queries(&mut self.encoder);
         self.encoder.finish()
     }

@@ -53,6 +53,12 @@ impl Renderer {
         // 2. geometry, camera ─▶ G-buffer: visibility, then depth + motion, normals,
         //    materials, real/virtual flags.
         self.gbuffer_pass.record(rec, raster);
+        // 2b. G-buffer, geometry, lights ─▶ reflection/refraction G-buffers (rays through
+        //     impostors), photons (caustics): handed to the method's host pass, which runs
+        //     them beside its own dispatch (they read nothing the method writes).
+        if let Some(specular) = &mut self.specular {
+            specular.record_rays(rec, raster);
+        }
         // 3. G-buffer, lights, scene ─▶ the method's indirect light (`IndirectLight`: the
         //    `Differential { rv, r }` of indirect radiance and the probe's visibility), from
         //    the same paths for both solutions. `dir`: RSMs → VPLs → ISMs → interleaved
@@ -60,13 +66,13 @@ impl Renderer {
         self.method.record(rec, raster);
         // 4. G-buffer, shadow maps, probe, indirect light ─▶ `Differential { rv: L_rv, r: L_r }`.
         self.direct.record(rec);
-        // 5. G-buffer, geometry, L_rv, L_r, photo ─▶ the light of reflections and refractions
-        //    on traced pixels (impostors, reflection/refraction G-buffers, back-projection).
+        // 5. specular G-buffers, photons, L_rv, L_r, photo ─▶ caustic buffer, the light of
+        //    reflections and refractions on traced pixels (back-projection).
         //    Hit surfaces off screen are shaded with the method's light at any point (its
         //    VPLs of this frame). Smoothed over frames through the motion vectors.
         if let Some(specular) = &mut self.specular {
             let vpl_parity = self.method.point_light().map_or(0, |p| p.parity);
-            specular.record(rec, raster, vpl_parity);
+            specular.record_light(rec, vpl_parity);
         }
         // 6. L_rv, L_r, specular light, flags, photo ─▶ the composite and α.
         self.composite.record(rec);
@@ -128,7 +134,7 @@ impl Renderer {
     ) -> Result<wgpu::SubmissionIndex> {
         self.prepare(&ctx.queue, inputs);
         let submitted = ctx.checked("rendering a frame", || {
-            let mut rec = Recorder::new(ctx, profiler, "frame");
+            let mut rec = Recorder::new(ctx, profiler, "frame").serial(self.serial_passes);
             self.record_frame(&mut rec);
             Ok(ctx.queue.submit([rec.finish()]))
         })?;

@@ -49,6 +49,9 @@ pub struct Renderer {
     pub(crate) composite: CompositePass,
     /// Settings this device could not honour, and what was used instead.
     pub warnings: Vec<String>,
+    /// Record the specular rays as passes of their own instead of beside the method's
+    /// shading (`mrshade bench --serial`: a time per pass; the same image).
+    pub serial_passes: bool,
 }
 
 impl Renderer {
@@ -188,6 +191,7 @@ impl Renderer {
             composite_targets,
             composite,
             warnings: Vec::new(),
+            serial_passes: false,
         }
     }
 

@@ -584,3 +584,33 @@ fn the_specular_light_is_smoothed_in_a_stream_and_a_new_photo_shows_at_once() {
         100.0 * trail / change
     );
 }
+
+/// The rays and photons run beside the method's ISM pass (`Recorder::compute_hosting`); as
+/// passes of their own (`mrshade bench --serial`) they must give the same image to the bit,
+/// with and without caustics.
+#[test]
+fn the_rays_beside_the_method_give_the_image_of_serial_passes() {
+    for caustics in [true, false] {
+        let mut s = Setup::top_down(BALL);
+        s.extra_toml += &format!("[caustics]\nenabled = {caustics}\nphoton_resolution = 32\n");
+        s.plane(2.0, 0.0, 0.5, true).light(json!({"type": "point", "intensity": 2.0}), BALL_LIGHT.to_array(), true);
+        let g = s.gltf.material(glass());
+        let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.1, 24), Some(g), true);
+        s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": BALL_CENTRE.to_array(),
+            "extras": {"real": false}}));
+        let (_dir, session) = s.session();
+        let ctx = mrshade_testkit::gpu();
+        let composite = |serial: bool| {
+            let mut renderer = mrshade_render::Renderer::new(&ctx, &session).unwrap();
+            renderer.serial_passes = serial;
+            renderer.render_frames(&ctx, 3, |_| {}).unwrap();
+            renderer.read_composite(&ctx).unwrap().image
+        };
+        let (beside, serial) = (composite(false), composite(true));
+        let differing =
+            (0..BALL * BALL).filter(|&i| beside.get(i % BALL, i / BALL) != serial.get(i % BALL, i / BALL)).count();
+        assert_eq!(differing, 0, "caustics {caustics}: {differing} pixels differ");
+        // The scene is not empty of what is tested: the ball refracts and the floor is lit.
+        assert!((0..BALL * BALL).any(|i| beside.get(i % BALL, i / BALL)[1] > 0.1));
+    }
+}

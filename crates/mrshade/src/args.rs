@@ -160,6 +160,11 @@ pub struct BenchArgs {
     /// moving insert. By default a still scene keeps them.
     #[arg(long)]
     pub moving: bool,
+    /// Record the specular rays and photons as passes of their own, for a time per pass
+    /// (by default they run beside the method's shading, which is faster but times them
+    /// together with it).
+    #[arg(long)]
+    pub serial: bool,
     /// Write the results as JSON here.
     #[arg(long, value_name = "OUT.json")]
     pub json: Option<PathBuf>,

@@ -37,7 +37,7 @@ use mrshade_core::flags::Realness;
 use mrshade_core::settings::{
     Concentration, InternalReflections, Intersection, Refraction, RefractionPolicy, RenderSettings, SpecularSettings,
 };
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder, SideJob};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Scene;
 use wgpu::util::DeviceExt;
@@ -104,6 +104,9 @@ pub struct SpecularStage {
     /// The camera's view of real geometry only, then the farthest surface of each
     /// transmissive traced instance.
     camera_views: Vec<RasterView>,
+    /// The camera the views were last set to, and whether they must be drawn again.
+    camera_views_clip: Option<Mat4>,
+    camera_views_stale: bool,
     /// Reflection and refraction G-buffers.
     pub gbuffers: SpecularGBuffers,
     /// Photon tracing and splatting, when the scene shoots photons.
@@ -127,6 +130,8 @@ pub struct SpecularStage {
 impl SpecularStage {
     /// GPU timing label of the trace.
     pub const TRACE_LABEL: &'static str = "specular/trace";
+    /// GPU timing label of the trace and the photon tracing, one job (caustics on).
+    pub const RAYS_LABEL: &'static str = "specular/trace+photons";
     /// GPU timing label of the resolve.
     pub const RESOLVE_LABEL: &'static str = "specular/resolve";
 
@@ -462,6 +467,8 @@ impl SpecularStage {
             impostors,
             interiors,
             camera_views,
+            camera_views_clip: None,
+            camera_views_stale: true,
             gbuffers,
             caustics,
             caustic_buffer,
@@ -496,30 +503,50 @@ impl SpecularStage {
         if let Some(caustics) = &self.caustics {
             caustics.prepare(queue, geometry);
         }
-        for view in &mut self.camera_views {
-            view.set_clip_from_world(queue, clip_from_world);
+        // The camera views change only where the camera or the geometry moved (a still
+        // frame keeps them, as the impostors).
+        if geometry.moved() || self.camera_views_clip != Some(clip_from_world) {
+            self.camera_views_clip = Some(clip_from_world);
+            self.camera_views_stale = true;
+            for view in &mut self.camera_views {
+                view.set_clip_from_world(queue, clip_from_world);
+            }
         }
     }
 
-    /// Impostors, camera views, trace, resolve (with the method's VPLs of `vpl_parity`, see
-    /// [`PointLight::parity`]).
-    pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer, vpl_parity: usize) {
+    /// What the rays need of the frame (impostors, camera views), then the trace and the
+    /// photon tracing handed to the method's host pass (they read the G-buffer and the scene,
+    /// nothing the method writes): the GPU runs their chains of dependent reads beside the
+    /// method's shading.
+    pub fn record_rays(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         self.impostors.record(rec, rasterizer);
-        rasterizer.record(rec, "specular/camera_views", &self.camera_views);
-        let groups = |pass: &mut wgpu::ComputePass, pipeline, groups: &[wgpu::BindGroup]| {
-            pass.set_pipeline(pipeline);
-            for (i, g) in groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
-        };
-        let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
-        rec.compute(Self::TRACE_LABEL, |pass| {
-            groups(pass, &self.trace, &self.trace_groups);
-            pass.dispatch_workgroups(w, h, 1);
-        });
-        if let Some(caustics) = &self.caustics {
-            caustics.record(rec, &self.caustic_buffer);
+        if std::mem::take(&mut self.camera_views_stale) {
+            rasterizer.record(rec, "specular/camera_views", &self.camera_views);
         }
+        let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
+        let trace =
+            Dispatch { pipeline: self.trace.clone(), groups: self.trace_groups.to_vec(), workgroups: [w, h, 1] };
+        let (mut first, then) = match &self.caustics {
+            Some(c) => {
+                let (mut photons, sizes) = c.photon_dispatches();
+                photons.push(self.caustic_buffer.clear.clone());
+                (photons, sizes)
+            }
+            None => Default::default(),
+        };
+        first.insert(0, trace);
+        let label = if self.caustics.is_some() { Self::RAYS_LABEL } else { Self::TRACE_LABEL };
+        rec.beside(SideJob { label: label.into(), first, then });
+    }
+
+    /// Caustic splat, resolve (with the method's VPLs of `vpl_parity`, see
+    /// [`PointLight::parity`]) and smoothing, after `record_rays` and the method.
+    pub fn record_light(&mut self, rec: &mut Recorder, vpl_parity: usize) {
+        rec.flush_side_jobs();
+        if let Some(caustics) = &self.caustics {
+            caustics.record_splat(rec, &self.caustic_buffer);
+        }
+        let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
         rec.compute(Self::RESOLVE_LABEL, |pass| {
             pass.set_pipeline(&self.resolve);
             let [inputs, probe, output] = &self.resolve_groups;

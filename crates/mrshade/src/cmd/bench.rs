@@ -79,6 +79,7 @@ pub fn bench(args: &BenchArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         bail!("adapter {} does not support timestamp queries, which bench needs", ctx.info.name);
     }
     let mut renderer = Renderer::new(&ctx, &session)?;
+    renderer.serial_passes = args.serial;
     for w in &renderer.warnings {
         log.warn(w);
     }

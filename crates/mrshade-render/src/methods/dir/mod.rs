@@ -57,6 +57,8 @@ pub struct DirMethod {
     still_frames: u32,
     /// Whether this frame's points on deformed instances must follow them.
     follow_points: bool,
+    /// Whether the RSMs must be drawn again (first frame, geometry or a light moved).
+    rsm_stale: bool,
     /// Lower bound of the VPL–receiver distance (m): `clamp_distance` × the scene's radius.
     d_min: f32,
     /// The interleave factor I (`dir.interleave`).
@@ -127,6 +129,7 @@ impl DirMethod {
             rendered: 0,
             still_frames: 0,
             follow_points: false,
+            rsm_stale: true,
             d_min,
             interleave: settings.interleave,
         }
@@ -150,6 +153,9 @@ impl LightTransport for DirMethod {
         // newly sees).
         self.follow_points = change.vertices_deformed;
         let light_changed = change.geometry_moved || change.moved_light_layers.is_some();
+        // The RSMs see the scene from the lights: only where the geometry or a light moved
+        // do they change (a camera moving through a still scene keeps them).
+        self.rsm_stale |= light_changed;
         self.still_frames = if light_changed || self.rendered == 0 { 0 } else { self.still_frames + 1 };
         let history = History {
             exists: self.rendered > 0,
@@ -165,7 +171,9 @@ impl LightTransport for DirMethod {
         if std::mem::take(&mut self.follow_points) {
             self.ism_resources.record_follow(rec);
         }
-        self.rsm.record(rec, rasterizer);
+        if std::mem::take(&mut self.rsm_stale) {
+            self.rsm.record(rec, rasterizer);
+        }
         self.vpl.record(rec, parity);
         self.ism.record(rec, &self.ism_resources, parity);
         self.indirect.record(rec, parity);
