@@ -237,3 +237,12 @@ fn caustic_structs_match() {
     assert_eq!(wgsl_layout(PHOTONS_SHADER, "Photon").0 as u64, PHOTON_BYTES);
     assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
 }
+
+#[test]
+fn the_cube_face_side_matches_the_cube_views() {
+    let fov = std::f32::consts::FRAC_PI_2 + mrshade_render::scene_gpu::FOV_MARGIN;
+    let source = mrshade_render::specular::caustics::PHOTONS_SHADER;
+    let value = source.split("const CUBE_FACE_SIDE: f32 = ").nth(1).and_then(|s| s.split(';').next()).unwrap();
+    let side: f32 = value.parse().unwrap();
+    assert!((side - 2.0 * (fov / 2.0).tan()).abs() < 1e-4, "CUBE_FACE_SIDE {side} for a {fov} rad face");
+}

@@ -176,12 +176,16 @@ fn march_slices(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
     return vec2f(0.0);
 }
 
-// How far a cube's texel may put a surface off the ray at `x` (four texels' width there, 92°
-// over the side): a thin object's span is marched in tiny steps, finer than the texels.
-// Impostors store the depth of flat objects exactly: 0.
+// Side of a cube face at unit distance: 2·tan(46°), its field of view being 90° plus
+// scene_gpu::FOV_MARGIN (tests/shaders.rs checks it).
+const CUBE_FACE_SIDE: f32 = 2.0711;
+
+// How far a cube's texel may put a surface off the ray at `x` (four texels' width there): a
+// thin object's span is marched in tiny steps, finer than the texels. Impostors store the
+// depth of flat objects exactly: 0.
 fn cube_texel_depth(imp: Impostor, x: vec3f) -> f32 {
     if (params.more.w == INTERSECTION_IMPOSTOR) { return 0.0; }
-    return 4.0 * 2.07 / f32(imp.info.z) * distance(x, imp.eye.xyz);
+    return 4.0 * CUBE_FACE_SIDE / f32(imp.info.z) * distance(x, imp.eye.xyz);
 }
 
 // Standard cubic environment mapping (spec §2.14): the surface the cube of slices `first`…
