@@ -599,8 +599,8 @@ fn the_specular_light_is_smoothed_in_a_stream_and_a_new_photo_shows_at_once() {
 }
 
 /// The rays and photons run beside the method's ISM pass (`Recorder::compute_hosting`); as
-/// passes of their own (`mrshade bench --serial`) they must give the same image to the bit,
-/// with and without caustics.
+/// passes of their own (`mrshade bench --serial`) they must give the same image: to the bit
+/// without caustics, to the splat's rounding with them.
 #[test]
 fn the_rays_beside_the_method_give_the_image_of_serial_passes() {
     for caustics in [true, false] {
@@ -620,9 +620,19 @@ fn the_rays_beside_the_method_give_the_image_of_serial_passes() {
             renderer.read_composite(&ctx).unwrap().image
         };
         let (beside, serial) = (composite(false), composite(true));
-        let differing =
-            (0..BALL * BALL).filter(|&i| beside.get(i % BALL, i / BALL) != serial.get(i % BALL, i / BALL)).count();
-        assert_eq!(differing, 0, "caustics {caustics}: {differing} pixels differ");
+        let largest = (0..BALL * BALL)
+            .flat_map(|i| {
+                let (a, b) = (beside.get(i % BALL, i / BALL), serial.get(i % BALL, i / BALL));
+                (0..3).map(move |c| (a[c] - b[c]).abs())
+            })
+            .fold(0.0f32, f32::max);
+        // Without caustics, to the bit. With them, to the last bits of a half float: the
+        // photons are splatted in the order their landing was counted (atomics), and
+        // additive blending rounds differently in another order, in two serial runs as well.
+        // A job run twice, or not at all, changes the caustic by its whole value (≈ 0.1–1).
+        eprintln!("caustics {caustics}: largest difference {largest}");
+        let tolerance = if caustics { 2e-3 } else { 0.0 };
+        assert!(largest <= tolerance, "caustics {caustics}: a pixel differs by {largest}");
         // The scene is not empty of what is tested: the ball refracts and the floor is lit.
         assert!((0..BALL * BALL).any(|i| beside.get(i % BALL, i / BALL)[1] > 0.1));
     }
