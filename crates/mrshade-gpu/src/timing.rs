@@ -48,7 +48,7 @@ impl Dispatch {
 
 /// Dispatches that need nothing of the passes between where they are handed over and where
 /// their results are read, run beside a host pass (see [`Recorder`]).
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct SideJob {
     /// Its name in the timings (a host pass is named `host ∥ job`).
     pub label: String,

@@ -114,8 +114,9 @@ pub struct SpecularStage {
     /// The caustic buffer (AOVs `caustics_rv`, `caustics_r`, `caustics_coarse_rv`,
     /// `caustics_coarse_r`).
     pub caustic_buffer: caustics::CausticBuffer,
-    trace: wgpu::ComputePipeline,
-    trace_groups: [wgpu::BindGroup; 3],
+    /// The trace, the photon tracing and the caustic buffer's clear, handed to the method's
+    /// host pass every frame (`record_rays`).
+    rays: SideJob,
     resolve: wgpu::ComputePipeline,
     /// Groups 0, 2 and 3 of the resolve.
     resolve_groups: [wgpu::BindGroup; 3],
@@ -463,6 +464,18 @@ impl SpecularStage {
             RESOLVE_SHADER,
             &[&resolve_inputs, &resolve_scene, &resolve_probe, &resolve_output],
         );
+        // The rays read the G-buffer and the scene, nothing the method writes.
+        let (w, h) = (size.0.div_ceil(8), size.1.div_ceil(8));
+        let mut first = vec![Dispatch { pipeline: trace, groups: trace_groups.to_vec(), workgroups: [w, h, 1] }];
+        let mut then = Vec::new();
+        if let Some(c) = &caustics {
+            let (photons, sizes) = c.photon_dispatches();
+            first.extend_from_slice(photons);
+            first.push(caustic_buffer.clear.clone());
+            then.extend_from_slice(sizes);
+        }
+        let label = if caustics.is_some() { Self::RAYS_LABEL } else { Self::TRACE_LABEL };
+        let rays = SideJob { label: label.into(), first, then };
         Some(Self {
             impostors,
             interiors,
@@ -472,8 +485,7 @@ impl SpecularStage {
             gbuffers,
             caustics,
             caustic_buffer,
-            trace,
-            trace_groups,
+            rays,
             resolve,
             resolve_groups,
             resolve_scene_groups,
@@ -523,20 +535,7 @@ impl SpecularStage {
         if std::mem::take(&mut self.camera_views_stale) {
             rasterizer.record(rec, "specular/camera_views", &self.camera_views);
         }
-        let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
-        let trace =
-            Dispatch { pipeline: self.trace.clone(), groups: self.trace_groups.to_vec(), workgroups: [w, h, 1] };
-        let (mut first, then) = match &self.caustics {
-            Some(c) => {
-                let (mut photons, sizes) = c.photon_dispatches();
-                photons.push(self.caustic_buffer.clear.clone());
-                (photons, sizes)
-            }
-            None => Default::default(),
-        };
-        first.insert(0, trace);
-        let label = if self.caustics.is_some() { Self::RAYS_LABEL } else { Self::TRACE_LABEL };
-        rec.beside(SideJob { label: label.into(), first, then });
+        rec.beside(self.rays.clone());
     }
 
     /// Caustic splat, resolve (with the method's VPLs of `vpl_parity`, see

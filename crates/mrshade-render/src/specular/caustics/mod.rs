@@ -72,9 +72,6 @@ struct PhotonGroup {
     params: wgpu::Buffer,
     /// The photon G-buffer (`Photon` in photons.wgsl), per source, kind and texel.
     photons: wgpu::Buffer,
-    /// The photon G-buffer and the splat lists live in these (wgpu bind groups keep their
-    /// buffers).
-    emit_groups: [wgpu::BindGroup; 2],
     /// The indirect draw of each level (`SplatDraw` in photons.wgsl).
     draws: wgpu::Buffer,
     /// Where the lights' group copies its draws for the next frame's caustic VPLs.
@@ -150,12 +147,12 @@ pub struct Caustics {
     /// The instances whose world boxes bound the photon maps.
     casters: Vec<usize>,
     groups: Vec<PhotonGroup>,
-    /// Bind groups every group's photon tracing shares: the scene, the probe.
-    scene_group: wgpu::BindGroup,
-    probe_group: wgpu::BindGroup,
-    emit: wgpu::ComputePipeline,
-    /// Each photon's quad size, from its neighbours (after all have landed).
-    size: wgpu::ComputePipeline,
+    /// The photon tracing of each group (reflections spec §2.17.1), one thread per photon
+    /// and kind.
+    emit: Vec<Dispatch>,
+    /// Each group's photons' quad sizes, from their neighbours (after all have landed), and
+    /// splat lists.
+    size: Vec<Dispatch>,
     splat: wgpu::RenderPipeline,
 }
 
@@ -262,7 +259,9 @@ impl Caustics {
             &[half, half],
         );
 
-        let mut groups = Vec::new();
+        let scene_group =
+            bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
+        let (mut groups, mut emit_dispatches, mut size_dispatches) = (Vec::new(), Vec::new(), Vec::new());
         for (label, sources, resolution, from_probe) in [
             (LIGHTS_LABEL, lights, settings.photon_resolution, 0),
             ("specular/photons_probe", directions, settings.environment_resolution, 1),
@@ -290,20 +289,31 @@ impl Caustics {
                     | wgpu::BufferUsages::COPY_DST
                     | wgpu::BufferUsages::COPY_SRC,
             });
-            let emit_groups = [
+            // The photon G-buffer and the splat lists live in these bind groups (wgpu bind
+            // groups keep their buffers).
+            let emit_groups = vec![
                 bind::group(
                     device,
                     &format!("{label}/uniforms"),
                     &emit_uniforms,
                     &[frame, inputs.specular_params, &params, inputs.shadow_params].map(|b| b.as_entire_binding()),
                 ),
+                scene_group.clone(),
                 bind::group(
                     device,
                     &format!("{label}/output"),
                     &emit_output,
                     &[&photons, &list, &draws].map(|b| b.as_entire_binding()),
                 ),
+                probe_group.clone(),
             ];
+            let side = resolution.div_ceil(8);
+            for (pipeline, kinds, dispatches) in
+                [(&emit, PHOTON_KINDS as u32, &mut emit_dispatches), (&size, 1, &mut size_dispatches)]
+            {
+                let workgroups = [side, side, sources * kinds];
+                dispatches.push(Dispatch { pipeline: pipeline.clone(), groups: emit_groups.clone(), workgroups });
+            }
             let splat_groups = [0, 1].map(|level| {
                 bind::group(
                     device,
@@ -327,14 +337,11 @@ impl Caustics {
                 landed: shared.map(|l| l.landed.clone()),
                 params,
                 photons,
-                emit_groups,
                 draws,
                 splat_groups,
             });
         }
-        let scene_group =
-            bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
-        Some(Self { settings, casters, groups, scene_group, probe_group, emit, size, splat })
+        Some(Self { settings, casters, groups, emit: emit_dispatches, size: size_dispatches, splat })
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their
@@ -363,31 +370,11 @@ impl Caustics {
         }
     }
 
-    /// Photon tracing, then splatting into both levels of `buffer`.
-    /// The photon tracing (reflections spec §2.17.1), one thread per photon and kind: the
-    /// chain of one photon's reads, not the GPU's throughput, bounds it, so it runs beside
-    /// other work (`SideJob::first`); then each photon's quad size and the splat lists
-    /// (`SideJob::then`).
-    pub fn photon_dispatches(&self) -> (Vec<Dispatch>, Vec<Dispatch>) {
-        let dispatches = |pipeline: &wgpu::ComputePipeline, kinds: u32| {
-            self.groups
-                .iter()
-                .map(|g| {
-                    let side = g.resolution.div_ceil(8);
-                    Dispatch {
-                        pipeline: pipeline.clone(),
-                        groups: vec![
-                            g.emit_groups[0].clone(),
-                            self.scene_group.clone(),
-                            g.emit_groups[1].clone(),
-                            self.probe_group.clone(),
-                        ],
-                        workgroups: [side, side, g.sources * kinds],
-                    }
-                })
-                .collect::<Vec<_>>()
-        };
-        (dispatches(&self.emit, PHOTON_KINDS as u32), dispatches(&self.size, 1))
+    /// The photon tracing, one thread per photon and kind: the chain of one photon's reads,
+    /// not the GPU's throughput, bounds it, so it runs beside other work (`SideJob::first`);
+    /// then each photon's quad size and the splat lists (`SideJob::then`).
+    pub fn photon_dispatches(&self) -> (&[Dispatch], &[Dispatch]) {
+        (&self.emit, &self.size)
     }
 
     /// Splats the photons traced by [`Caustics::photon_dispatches`] into both levels of
