@@ -238,3 +238,14 @@ pub fn classify(camera: Vec3, p: Vec3, light: Vec3, blockers: &[Blocker], margin
         ShadowClass::Unknown
     }
 }
+
+/// A mirror material (metal, smooth) and a clear glass one.
+pub fn mirror() -> serde_json::Value {
+    json!({"name": "mirror", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0, "roughnessFactor": 0.0}})
+}
+
+pub fn glass() -> serde_json::Value {
+    json!({"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.5},
+            "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationColor": [0.6, 0.9, 0.7], "attenuationDistance": 0.2}}})
+}
