@@ -78,16 +78,21 @@ pub fn texture(
     }
 }
 
-/// A write-only storage texture.
+/// A write-only 2D storage texture.
 pub fn storage_texture(binding: u32, format: wgpu::TextureFormat) -> Entry {
+    storage_texture_of(binding, format, wgpu::TextureViewDimension::D2)
+}
+
+/// A write-only storage texture of any dimension.
+pub fn storage_texture_of(
+    binding: u32,
+    format: wgpu::TextureFormat,
+    view_dimension: wgpu::TextureViewDimension,
+) -> Entry {
     Entry {
         binding,
         visibility: ShaderStages::COMPUTE,
-        ty: BindingType::StorageTexture {
-            access: wgpu::StorageTextureAccess::WriteOnly,
-            format,
-            view_dimension: wgpu::TextureViewDimension::D2,
-        },
+        ty: BindingType::StorageTexture { access: wgpu::StorageTextureAccess::WriteOnly, format, view_dimension },
         count: None,
     }
 }

@@ -52,6 +52,8 @@ pub struct Fit<'a> {
     pub max_binding: u64,
     /// Number of lights, for messages.
     pub lights: usize,
+    /// Largest 3D texture side.
+    pub max_texture_3d: u32,
     warnings: &'a mut Vec<String>,
 }
 
@@ -83,6 +85,8 @@ pub struct DeviceLimits {
     pub max_texture_side: u32,
     /// Most layers of a texture array.
     pub max_array_layers: u32,
+    /// Largest 3D texture side.
+    pub max_texture_3d: u32,
 }
 
 impl From<&wgpu::Limits> for DeviceLimits {
@@ -91,6 +95,7 @@ impl From<&wgpu::Limits> for DeviceLimits {
             max_binding: l.max_storage_buffer_binding_size.min(l.max_buffer_size),
             max_texture_side: l.max_texture_dimension_2d,
             max_array_layers: l.max_texture_array_layers,
+            max_texture_3d: l.max_texture_dimension_3d,
         }
     }
 }
@@ -104,7 +109,13 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
     let mut warnings = Vec::new();
     let max_binding = device.max_binding;
     let layers = shadow_layer_count(scene).max(1);
-    let mut fit = Fit { shadow_layers: layers, max_binding, lights: scene.lights.len(), warnings: &mut warnings };
+    let mut fit = Fit {
+        shadow_layers: layers,
+        max_binding,
+        lights: scene.lights.len(),
+        max_texture_3d: device.max_texture_3d,
+        warnings: &mut warnings,
+    };
     let screen_fits = |ss: u64| {
         let (w, h) = (output.width as u64 * ss, output.height as u64 * ss);
         w <= device.max_texture_side as u64 && h <= device.max_texture_side as u64 && w * h * 8 <= max_binding
@@ -308,7 +319,7 @@ mod tests {
     use mrshade_core::flags::Realness;
 
     const SMALL_DEVICE: DeviceLimits =
-        DeviceLimits { max_binding: 128 << 20, max_texture_side: 8192, max_array_layers: 256 };
+        DeviceLimits { max_binding: 128 << 20, max_texture_side: 8192, max_array_layers: 256, max_texture_3d: 2048 };
 
     fn session(lights: usize, width: u32) -> Session {
         let mut scene = Scene::default();

@@ -127,6 +127,7 @@ impl Renderer {
             scene: &scene,
             rasterizer: &rasterizer,
             frame_uniforms: &frame,
+            shadow_maps: &shadows.maps,
             gbuffer: &gbuffer,
             radiance: &radiance,
             internal_size: internal,

@@ -3,6 +3,7 @@
 
 use mrshade_render::methods::dir::PointAnchor;
 use mrshade_render::methods::dir::{filter, indirect, ism, rsm, vpl};
+use mrshade_render::methods::dvct;
 use mrshade_render::passes::deform::GpuRange;
 use mrshade_render::passes::{composite, deform, direct, encode, gbuffer};
 use mrshade_render::raster;
@@ -35,6 +36,11 @@ const MODULES: &[(&str, &str)] = &[
     ("specular/resolve", specular::RESOLVE_SHADER),
     ("specular/photons", specular::caustics::PHOTONS_SHADER),
     ("specular/caustic_splat", specular::caustics::SPLAT_SHADER),
+    ("dvct/voxelize", dvct::VOXELIZE_SHADER),
+    ("dvct/light", dvct::LIGHT_SHADER),
+    ("dvct/bounce", dvct::BOUNCE_SHADER),
+    ("dvct/mips", dvct::MIPS_SHADER),
+    ("dvct/cones", dvct::GATHER_SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -69,6 +75,22 @@ fn assert_layout(source: &str, name: &str, size: usize, offsets: &[(&str, usize)
     assert_eq!(span as usize, size, "size of {name}");
     let rust: Vec<(String, u32)> = offsets.iter().map(|(n, o)| (n.to_string(), *o as u32)).collect();
     assert_eq!(members, rust, "members of {name}");
+}
+
+#[test]
+fn dvct_volume_params_match() {
+    for source in [dvct::VOXELIZE_SHADER, dvct::GATHER_SHADER] {
+        assert_layout(
+            source,
+            "VolumeParams",
+            size_of::<dvct::VolumeParams>(),
+            &[
+                ("origin", offset_of!(dvct::VolumeParams, origin)),
+                ("info", offset_of!(dvct::VolumeParams, info)),
+                ("cone", offset_of!(dvct::VolumeParams, cone)),
+            ],
+        );
+    }
 }
 
 #[test]

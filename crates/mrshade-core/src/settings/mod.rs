@@ -7,6 +7,7 @@
 mod caustics;
 mod composite;
 mod dir;
+mod dvct;
 mod limits;
 mod reference;
 mod shadows;
@@ -15,6 +16,7 @@ mod specular;
 pub use caustics::{CausticsSettings, Concentration};
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
+pub use dvct::DvctSettings;
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;
@@ -35,25 +37,32 @@ pub enum Method {
     /// real and virtual.
     #[default]
     Dir,
+    /// Delta voxel cone tracing (Franke §2.13): the scene around the virtual content
+    /// voxelised, its first bounce (and a second) injected per voxel for both solutions,
+    /// mipmapped, and gathered per pixel by nine diffuse cones and one glossy cone; the
+    /// cones' occlusion shadows the probe. Punctual shadows come from the shadow maps.
+    Dvct,
 }
 
 impl Method {
     /// Every method, for `--help` and error messages.
-    pub const ALL: &'static [Method] = &[Method::Dir, Method::Direct];
+    pub const ALL: &'static [Method] = &[Method::Dir, Method::Direct, Method::Dvct];
 
     /// The name used in sessions and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             Method::Direct => "direct",
             Method::Dir => "dir",
+            Method::Dvct => "dvct",
         }
     }
 
-    /// Whether virtual objects shadow the probe's light (`dir`, through its directional
-    /// VPLs); `direct` lights with the probe unshadowed.
+    /// Whether virtual objects shadow the probe's light through directional VPLs (`dir`), which
+    /// the probe's photons then complete (`RenderSettings::probe_caustics`); `direct` lights
+    /// with the probe unshadowed, `dvct` shadows it by its cones' occlusion.
     pub fn shadows_probe(self) -> bool {
         match self {
-            Method::Direct => false,
+            Method::Direct | Method::Dvct => false,
             Method::Dir => true,
         }
     }
@@ -62,10 +71,10 @@ impl Method {
     /// bounces build up over the first frames and whose still-scene smoothing then averages
     /// the VPLs of about 250 frames (`dir.temporal.static_confidence`), the last 128 frames'
     /// composites being averaged with sub-pixel jitter. Milliseconds on a GPU; minutes on
-    /// lavapipe.
+    /// lavapipe. One for `dvct`, which draws no random samples.
     pub fn default_still_frames(self) -> u32 {
         match self {
-            Method::Direct => 1,
+            Method::Direct | Method::Dvct => 1,
             Method::Dir => 256,
         }
     }
@@ -91,6 +100,8 @@ pub struct RenderSettings {
     pub shadows: ShadowSettings,
     /// The `dir` method.
     pub dir: DirSettings,
+    /// The `dvct` method.
+    pub dvct: DvctSettings,
     /// Reflections and refractions (the specular stage, with every method).
     pub specular: SpecularSettings,
     /// Caustics of the punctual lights through the specular stage's objects.
@@ -115,6 +126,7 @@ impl RenderSettings {
         self.composite.validate()?;
         self.shadows.validate()?;
         self.dir.validate()?;
+        self.dvct.validate()?;
         self.specular.validate()?;
         self.caustics.validate()?;
         self.reference.validate()
@@ -150,6 +162,6 @@ mod tests {
         for m in Method::ALL {
             assert_eq!(Method::from_name(m.name()).unwrap(), *m);
         }
-        assert!(Method::from_name("magic").unwrap_err().contains("dir, direct"));
+        assert!(Method::from_name("magic").unwrap_err().contains("dir, direct, dvct"));
     }
 }

@@ -15,6 +15,7 @@
 
 pub mod dir;
 mod direct;
+pub mod dvct;
 mod indirect_light;
 
 pub use indirect_light::{FORMAT as INDIRECT_FORMAT, IndirectLight, PointLight, TARGETS as INDIRECT_TARGETS};
@@ -44,6 +45,9 @@ pub struct MethodInputs<'a> {
     pub rasterizer: &'a Rasterizer,
     /// The frame's uniform buffer (`Frame` in shaders/lib/frame.wgsl).
     pub frame_uniforms: &'a wgpu::Buffer,
+    /// The punctual lights' shadow maps (`crate::passes::shadow::ShadowPass::maps`), drawn
+    /// before the method's passes.
+    pub shadow_maps: &'a wgpu::Buffer,
     /// The G-buffer of the frame's camera.
     pub gbuffer: &'a GBuffer,
     /// Where the frame's shading writes `L_rv` and `L_r`.
@@ -120,6 +124,7 @@ pub struct Entry {
 pub const REGISTRY: &[Entry] = &[
     Entry { method: Method::Dir, build: dir::build, fit: dir::fit, estimate: dir::estimate },
     Entry { method: Method::Direct, build: direct::build, fit: direct::fit, estimate: direct::estimate },
+    Entry { method: Method::Dvct, build: dvct::build, fit: dvct::fit, estimate: dvct::estimate },
 ];
 
 /// The registry entry of `method`.

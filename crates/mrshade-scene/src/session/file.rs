@@ -6,7 +6,7 @@ use super::output::OutputFile;
 use crate::sequence::{DEFAULT_FPS, DEFAULT_SAMPLES};
 use anyhow::{Context, Result};
 use mrshade_core::settings::{
-    CausticsSettings, CompositeSettings, DirSettings, Limits, Method, ReferenceSettings, ShadowSettings,
+    CausticsSettings, CompositeSettings, DirSettings, DvctSettings, Limits, Method, ReferenceSettings, ShadowSettings,
     SpecularSettings,
 };
 use serde::Deserialize;
@@ -30,6 +30,8 @@ pub(super) struct SessionFile {
     pub(super) shadows: ShadowSettings,
     #[serde(default)]
     pub(super) dir: DirSettings,
+    #[serde(default)]
+    pub(super) dvct: DvctSettings,
     #[serde(default)]
     pub(super) specular: SpecularSettings,
     #[serde(default)]

@@ -247,6 +247,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         composite: file.composite,
         shadows: file.shadows,
         dir: file.dir,
+        dvct: file.dvct,
         specular: file.specular,
         caustics: file.caustics,
         reference: file.reference,

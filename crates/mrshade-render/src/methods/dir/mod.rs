@@ -83,6 +83,7 @@ impl DirMethod {
             radiance,
             internal_size,
             light_photons,
+            ..
         } = *inputs;
         let settings = &session.settings.dir;
         let (center, radius) = match session.scene.bounds() {

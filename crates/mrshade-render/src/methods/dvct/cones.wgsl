@@ -1,0 +1,98 @@
+// Cone tracing through the prefiltered volumes (Franke §2.13.2 step 4, Eq. 5.18–5.19 in the
+// premultiplied front-to-back form of [Code]): both solutions along the same cone, the same
+// samples, `rv` through the real+virtual volume and `r` through the real-only one.
+// Bindings are declared by the including pass: params, volume_rv, volume_r, volume_sampler.
+
+struct Cone {
+    // Premultiplied radiance seen along the cone, and its opacity, of each solution.
+    rv: vec4f,
+    r: vec4f,
+}
+
+// Enter and exit distances of the ray `o + t·d` through the volume (exit < enter: missed).
+fn volume_span(o: vec3f, d: vec3f) -> vec2f {
+    let inv = 1.0 / select(d, vec3f(1e-12), abs(d) < vec3f(1e-12));
+    let lo = (params.origin.xyz - o) * inv;
+    let hi = (params.origin.xyz + volume_side() - o) * inv;
+    let near = min(lo, hi);
+    let far = max(lo, hi);
+    return vec2f(max(max(near.x, near.y), near.z), min(min(far.x, far.y), far.z));
+}
+
+// Marches from `o` along unit `d` with steps as long as the cone is wide (`aperture`: its
+// diameter per unit length), sampling the mip level whose voxels match that width, from `start`
+// until both solutions are opaque or the cone leaves the volume. Outside the volume there is
+// nothing: what a cone does not hit there is the probe's (its opacity says how much).
+fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32) -> Cone {
+    var out = Cone(vec4f(0.0), vec4f(0.0));
+    let span = volume_span(o, d);
+    let voxel = voxel_side();
+    let max_lod = f32(params.info.y - 1u);
+    let extent = 1.0 / volume_side();
+    var t = max(start, span.x);
+    for (var i = 0u; i < 256u; i++) {
+        if (t >= span.y || (out.rv.a >= 0.99 && out.r.a >= 0.99)) { break; }
+        let diameter = max(voxel, aperture * t);
+        let lod = min(log2(diameter / voxel), max_lod);
+        let uvw = (o + d * t - params.origin.xyz) * extent;
+        let s_rv = textureSampleLevel(volume_rv, volume_sampler, uvw, lod);
+        let s_r = textureSampleLevel(volume_r, volume_sampler, uvw, lod);
+        out.rv += (1.0 - out.rv.a) * s_rv;
+        out.r += (1.0 - out.r.a) * s_r;
+        t += diameter;
+    }
+    return out;
+}
+
+// The nine diffuse cones of [CNS+11] (spec §2.13.4): the normal and eight around it at 45°
+// and 55°, weighted by their cosines so that the weights sum to π (a uniform radiance L
+// gives the irradiance πL).
+const DIFFUSE_CONES: u32 = 9u;
+
+fn diffuse_cone(n: vec3f, k: u32) -> vec4f {
+    let tb = tangent_frame(n);
+    let offsets = array<vec2f, 9>(
+        vec2f(0.0, 0.0), vec2f(1.0, 0.0), vec2f(-1.0, 0.0), vec2f(0.0, 1.0), vec2f(0.0, -1.0),
+        vec2f(1.0, 1.0), vec2f(-1.0, 1.0), vec2f(1.0, -1.0), vec2f(-1.0, -1.0),
+    );
+    let o = offsets[k];
+    let d = normalize(n + tb[0] * o.x + tb[1] * o.y);
+    // Σ cos = 1 + 4·cos 45° + 4·cos 54.7°.
+    let cos_sum = 1.0 + 4.0 * 0.70710678 + 4.0 * 0.57735027;
+    return vec4f(d, PI * dot(d, n) / cos_sum);
+}
+
+// Where the cones of a surface at `p` with normal `n` start: one voxel off the surface, so
+// that it does not see its own voxels.
+fn cone_origin(p: vec3f, n: vec3f) -> vec3f { return p + n * (2.0 * voxel_side()); }
+
+// Roughness of the probe lookup that stands for a diffuse cone's solid angle.
+const CONE_PROBE_ROUGHNESS: f32 = 0.7;
+
+// What the nine diffuse cones of a surface at `p` (normal `n`) gather: the irradiance of both
+// solutions' bounce light, and the probe's irradiance as each solution's cones let it through
+// (per channel: Σw·V_rv, Σw·V_r) and unoccluded (Σw), w being a cone's weight times the
+// probe's radiance in its direction.
+struct Gathered {
+    rv: vec3f,
+    r: vec3f,
+    env_rv: vec3f,
+    env_r: vec3f,
+    env: vec3f,
+}
+
+fn gather_diffuse(p: vec3f, n: vec3f) -> Gathered {
+    var out = Gathered(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
+    let o = cone_origin(p, n);
+    for (var k = 0u; k < DIFFUSE_CONES; k++) {
+        let c = diffuse_cone(n, k);
+        let hit = trace_cone(o, c.xyz, params.cone.x, voxel_side());
+        out.rv += c.w * hit.rv.rgb;
+        out.r += c.w * hit.r.rgb;
+        let w = c.w * env_radiance_at(frame, c.xyz, CONE_PROBE_ROUGHNESS);
+        out.env_rv += w * (1.0 - min(hit.rv.a, 1.0));
+        out.env_r += w * (1.0 - min(hit.r.a, 1.0));
+        out.env += w;
+    }
+    return out;
+}

@@ -1,0 +1,84 @@
+// Per-pixel cone tracing (Franke §2.13.3–§2.13.5, Eq. 5.21–5.25) into the method's
+// IndirectLight: the nine diffuse cones gather the injected bounce light of both solutions
+// (T_Δ² on real pixels as L_rv − L_r, T_ρ² on virtual ones) and their opacity shadows the
+// probe's light per channel (Σw·V_rv, Σw·V_r, Σw with w the probe's light in a cone's
+// direction times its weight); one cone along the reflected view ray, as wide as the GGX lobe
+// of the surface's roughness, adds the glossy reflection of what the volumes hold (virtual
+// objects mirrored in a real desk). Mirror-like and transmissive materials leave that to the
+// specular stage. Pixels whose cones miss the volume get no indirect light and an unshadowed
+// probe, as with `direct`.
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: VolumeParams;
+@group(0) @binding(2) var gbuffer_depth_motion: texture_2d<f32>;
+@group(0) @binding(3) var gbuffer_albedo_metallic: texture_2d<f32>;
+@group(0) @binding(4) var gbuffer_normal_roughness: texture_2d<f32>;
+@group(0) @binding(5) var gbuffer_specular: texture_2d<f32>;
+@group(0) @binding(6) var gbuffer_flags: texture_2d<u32>;
+@group(0) @binding(7) var<storage, read> materials: array<Material>;
+
+@group(1) @binding(0) var volume_rv: texture_3d<f32>;
+@group(1) @binding(1) var volume_r: texture_3d<f32>;
+@group(1) @binding(2) var volume_sampler: sampler;
+
+@group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(2) var out_env_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(3) var out_env_r: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(4) var out_env_weight: texture_storage_2d<rgba16float, write>;
+
+@group(3) @binding(0) var env_radiance: texture_2d<f32>;
+@group(3) @binding(1) var env_irradiance: texture_2d<f32>;
+@group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
+@group(3) @binding(3) var env_sampler: sampler;
+
+// Diameter-to-length ratio of the cone that holds a GGX lobe of `roughness` (α = r²; the
+// lobe's half width is about atan α), at least a voxel's worth over the volume.
+fn specular_aperture(roughness: f32) -> f32 {
+    let alpha = roughness * roughness;
+    return clamp(2.0 * alpha, 1.0 / f32(params.info.x), 1.5);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.xy)) { return; }
+    let pixel = vec2i(id.xy);
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    if (!is_covered(flags)) {
+        textureStore(out_rv, pixel, vec4f(0.0));
+        textureStore(out_r, pixel, vec4f(0.0));
+        textureStore(out_env_rv, pixel, vec4f(0.0));
+        textureStore(out_env_r, pixel, vec4f(0.0));
+        textureStore(out_env_weight, pixel, vec4f(0.0));
+        return;
+    }
+    let p = world_from_pixel(frame, vec2f(id.xy) + 0.5, textureLoad(gbuffer_depth_motion, pixel, 0).x);
+    var s = gbuffer_surface(
+        p,
+        frame.camera_position.xyz,
+        textureLoad(gbuffer_albedo_metallic, pixel, 0),
+        textureLoad(gbuffer_normal_roughness, pixel, 0),
+        textureLoad(gbuffer_specular, pixel, 0),
+    );
+    let m = materials[material_of(flags)];
+    s.transmission = m.transmission.x;
+    let r_p = r_of(flags);
+
+    let o = cone_origin(p, s.normal);
+    let e = gather_diffuse(p, s.normal);
+    let specular_albedo = env_specular_albedo(s);
+    let diffuse = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
+    var l_rv = diffuse * e.rv;
+    var l_r = diffuse * e.r;
+    if (!is_traced(m)) {
+        let d = reflect(-s.view, s.normal);
+        let hit = trace_cone(o, d, specular_aperture(s.roughness), voxel_side());
+        l_rv += specular_albedo * hit.rv.rgb;
+        l_r += specular_albedo * hit.r.rgb;
+    }
+    textureStore(out_rv, pixel, vec4f(l_rv, 1.0));
+    textureStore(out_r, pixel, vec4f(l_r * r_p, 1.0));
+    textureStore(out_env_rv, pixel, vec4f(e.env_rv, 1.0));
+    textureStore(out_env_r, pixel, vec4f(e.env_r, 1.0));
+    textureStore(out_env_weight, pixel, vec4f(e.env, 1.0));
+}

@@ -1,0 +1,558 @@
+//! Delta voxel cone tracing, the `dvct` method (Franke §2.13, [Fra14a]), its passes in the
+//! order of the spec's pseudo-code (§2.13.8): voxelise the real and virtual scene around the
+//! virtual content → inject the first bounce of both solutions per voxel → (a second bounce,
+//! gathered by cones per voxel) → 3D mipmaps → per-pixel cone tracing into the
+//! [`IndirectLight`] that direct lighting adds. Voxels and their light are redrawn only when
+//! geometry or a light moved; the cones are traced every frame.
+//!
+//! Where it departs from the thesis, and why: the direct change T_Δ¹ comes from the frame's
+//! real-only and virtual-only shadow maps (exact, unbounded, never darkening a real shadow
+//! twice; spec §2.13.3's pitfall) instead of one shadow cone per light; the split injection is
+//! per voxel (each voxel lit through the shadow maps for both solutions) instead of per RSM
+//! texel with racing writes; and a second bounce is injected (`dvct.bounces`).
+
+mod volume;
+
+pub use volume::{VolumePair, VolumeParams, levels, place};
+
+use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
+use crate::limits::Fit;
+use crate::outputs::Aov;
+use crate::passes::direct::ShadowParams;
+use crate::raster::Rasterizer;
+use crate::scene_gpu::GpuProbe;
+use anyhow::{Result, bail};
+use glam::{UVec4, Vec4};
+use mrshade_core::settings::RenderSettings;
+use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{GpuContext, bind, wgsl};
+use wgpu::util::DeviceExt;
+
+/// Bytes per voxel of the voxelisation (a real and a virtual triangle).
+const VOXEL_BYTES: u64 = 8;
+
+/// The method's passes and volumes.
+pub struct DvctMethod {
+    params: VolumeParams,
+    params_buffer: wgpu::Buffer,
+    extent: f32,
+    scene_box: Option<(glam::Vec3, glam::Vec3)>,
+    voxels: wgpu::Buffer,
+    voxel_words: u32,
+    clear: wgpu::ComputePipeline,
+    voxelize: wgpu::ComputePipeline,
+    voxelize_group: wgpu::BindGroup,
+    light: wgpu::ComputePipeline,
+    light_groups: [wgpu::BindGroup; 4],
+    /// The second bounce's pipeline and groups (`dvct.bounces` = 2).
+    bounce: Option<(wgpu::ComputePipeline, [wgpu::BindGroup; 4])>,
+    mips: wgpu::ComputePipeline,
+    /// Per volume pair, per level from 1: the group and the level's side.
+    mip_groups: Vec<Vec<(wgpu::BindGroup, u32)>>,
+    gather: wgpu::ComputePipeline,
+    gather_groups: [wgpu::BindGroup; 4],
+    /// What direct lighting adds.
+    pub indirect: IndirectLight,
+    /// The volumes the pixels' cones read (the second bounce's, else the first's).
+    pub volumes: VolumePair,
+    stale_voxels: bool,
+    stale_light: bool,
+    size: (u32, u32),
+}
+
+/// Builds the method (the registry's `build`).
+pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
+    Box::new(DvctMethod::new(inputs))
+}
+
+/// Halves the volumes until their voxelisation fits one buffer binding and their side one 3D
+/// texture.
+pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
+    let (max_binding, max_side) = (fit.max_binding, fit.max_texture_3d as u64);
+    let fits = |res: u64| res * res * res * VOXEL_BYTES <= max_binding && res <= max_side;
+    if !fit.shrink("dvct.resolution", &mut settings.dvct.resolution, &fits, 16) {
+        bail!("this device cannot hold even a 16³ voxel volume for `dvct`");
+    }
+    Ok(())
+}
+
+/// GPU bytes of the method, item by item.
+pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers: u64) -> Vec<(&'static str, u64)> {
+    let res = settings.dvct.resolution;
+    let pairs = settings.dvct.bounces as u64;
+    vec![
+        ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
+        ("dvct voxels (dvct.resolution³)", (res as u64).pow(3) * VOXEL_BYTES),
+        ("dvct volumes (dvct.resolution³ × bounces, with mips)", pairs * VolumePair::bytes(res)),
+    ]
+}
+
+impl DvctMethod {
+    /// GPU timing label of the voxelisation.
+    pub const VOXELIZE_LABEL: &'static str = "dvct-voxelize";
+    /// GPU timing label of the injection, second bounce and mipmaps.
+    pub const LIGHT_LABEL: &'static str = "dvct-light";
+    /// GPU timing label of the pixels' cones.
+    pub const LABEL: &'static str = "dvct-cones";
+
+    /// Builds every pass for the session of `inputs`.
+    pub fn new(inputs: &MethodInputs) -> Self {
+        let MethodInputs { ctx, session, scene, frame_uniforms, gbuffer, internal_size, shadow_maps, .. } = *inputs;
+        let device = &ctx.device;
+        let settings = &session.settings.dvct;
+        let res = settings.resolution;
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let g = &scene.geometry;
+        let scene_box = session.scene.bounds();
+        let (origin, side) = place(g.virtual_box(), scene_box, settings.extent);
+        let params = VolumeParams {
+            origin: origin.extend(side / res as f32),
+            info: UVec4::new(res, levels(res), g.triangle_count, (settings.bounces == 1) as u32),
+            cone: Vec4::new(settings.diffuse_aperture, 0.0, 0.0, 0.0),
+        };
+        let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dvct/params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let voxel_words = res * res * res * 2;
+        let voxels = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dvct/voxels"),
+            size: voxel_words as u64 * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+
+        // Voxelisation.
+        let voxelize_layout = bind::layout(
+            device,
+            "dvct/voxelize_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::storage(1, cs),
+                bind::storage(2, cs),
+                bind::storage(3, cs),
+                bind::storage(4, cs),
+                bind::storage_rw(5, cs),
+            ],
+        );
+        let geometry = [
+            params_buffer.as_entire_binding(),
+            g.instances.as_entire_binding(),
+            g.vertices.as_entire_binding(),
+            g.indices.as_entire_binding(),
+            g.triangles.as_entire_binding(),
+        ];
+        let mut resources = geometry.to_vec();
+        resources.push(voxels.as_entire_binding());
+        let voxelize_group = bind::group(device, "dvct/voxelize_group", &voxelize_layout, &resources);
+        let voxelize = compute_pipeline(device, "dvct/voxelize", VOXELIZE_SHADER, &[&voxelize_layout]);
+        let clear = compute_pipeline_entry(device, "dvct/clear", VOXELIZE_SHADER, "clear", &[&voxelize_layout]);
+
+        // Shared groups of the light and bounce passes: the voxels' surfaces.
+        let surface_layout = bind::layout(
+            device,
+            "dvct/surface_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::storage(1, cs),
+                bind::storage(2, cs),
+                bind::storage(3, cs),
+                bind::storage(4, cs),
+                bind::storage(5, cs),
+                bind::storage(6, cs),
+            ],
+        );
+        let mut resources = geometry.to_vec();
+        resources.push(scene.materials.buffer.as_entire_binding());
+        resources.push(voxels.as_entire_binding());
+        let surface_group = bind::group(device, "dvct/surface_group", &surface_layout, &resources);
+        let storage_3d = |i| bind::storage_texture_of(i, volume::FORMAT, wgpu::TextureViewDimension::D3);
+        let out_layout = bind::layout(device, "dvct/out_layout", &[storage_3d(0), storage_3d(1)]);
+        let out_group = |pair: &VolumePair, label: &str| {
+            let [rv, r] = pair.level(0);
+            use wgpu::BindingResource::TextureView;
+            bind::group(device, label, &out_layout, &[TextureView(&rv), TextureView(&r)])
+        };
+        use wgpu::BindingResource::{Sampler, TextureView};
+        let m = &scene.materials;
+        let textures = [TextureView(&m.srgb.view), TextureView(&m.linear.view), Sampler(&m.sampler)];
+        let array = wgpu::TextureViewDimension::D2Array;
+        let filterable = wgpu::TextureSampleType::Float { filterable: true };
+        let texture_entries = |first: u32| {
+            [
+                bind::texture(first, cs, filterable, array),
+                bind::texture(first + 1, cs, filterable, array),
+                bind::sampler(first + 2, cs, wgpu::SamplerBindingType::Filtering),
+            ]
+        };
+
+        // First bounce.
+        let first = VolumePair::new(device, "dvct/first_bounce", res);
+        let shadow_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dvct/shadow_params"),
+            contents: bytemuck::bytes_of(&ShadowParams::new(&session.settings.shadows, false)),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let lights_layout = bind::layout(
+            device,
+            "dvct/lights_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::uniform(1, cs),
+                bind::storage(2, cs),
+                bind::storage(3, cs),
+                bind::storage(4, cs),
+            ],
+        );
+        let lights_group = bind::group(
+            device,
+            "dvct/lights_group",
+            &lights_layout,
+            &[
+                frame_uniforms.as_entire_binding(),
+                shadow_params.as_entire_binding(),
+                scene.lights.as_entire_binding(),
+                scene.shadow_matrices.as_entire_binding(),
+                shadow_maps.as_entire_binding(),
+            ],
+        );
+        let mut entries = GpuProbe::layout_entries(cs).to_vec();
+        entries.extend(texture_entries(4));
+        let probe_textures_layout = bind::layout(device, "dvct/probe_textures_layout", &entries);
+        let mut resources = scene.probe.resources().to_vec();
+        resources.extend(textures.clone());
+        let probe_textures_group = bind::group(device, "dvct/probe_textures_group", &probe_textures_layout, &resources);
+        let light = compute_pipeline(
+            device,
+            "dvct/light",
+            LIGHT_SHADER,
+            &[&surface_layout, &lights_layout, &probe_textures_layout, &out_layout],
+        );
+        let light_groups = [
+            surface_group.clone(),
+            lights_group,
+            probe_textures_group,
+            out_group(&first, "dvct/first_bounce_out_group"),
+        ];
+
+        // Sampled volumes (the second bounce's and the pixels' cones).
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("dvct/volume_sampler"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        let volume_layout = bind::layout(
+            device,
+            "dvct/volume_layout",
+            &[
+                bind::texture(0, cs, filterable, wgpu::TextureViewDimension::D3),
+                bind::texture(1, cs, filterable, wgpu::TextureViewDimension::D3),
+                bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
+        let volume_group = |pair: &VolumePair, label: &str| {
+            bind::group(
+                device,
+                label,
+                &volume_layout,
+                &[TextureView(&pair.sampled[0]), TextureView(&pair.sampled[1]), Sampler(&sampler)],
+            )
+        };
+
+        // Second bounce.
+        let (bounce, volumes) = if settings.bounces >= 2 {
+            let second = VolumePair::new(device, "dvct/second_bounce", res);
+            let mut entries = GpuProbe::layout_entries(cs).to_vec();
+            entries.extend(texture_entries(4));
+            entries.push(bind::uniform(7, cs));
+            let textures_layout = bind::layout(device, "dvct/bounce_probe_layout", &entries);
+            let mut resources = scene.probe.resources().to_vec();
+            resources.extend(textures.clone());
+            resources.push(frame_uniforms.as_entire_binding());
+            let textures_group = bind::group(device, "dvct/bounce_probe_group", &textures_layout, &resources);
+            let pipeline = compute_pipeline(
+                device,
+                "dvct/bounce",
+                BOUNCE_SHADER,
+                &[&surface_layout, &volume_layout, &textures_layout, &out_layout],
+            );
+            let groups = [
+                surface_group,
+                volume_group(&first, "dvct/first_bounce_group"),
+                textures_group,
+                out_group(&second, "dvct/second_bounce_out_group"),
+            ];
+            (Some((pipeline, groups)), Some(second))
+        } else {
+            (None, None)
+        };
+
+        // Mipmaps.
+        let mips_layout = bind::layout(
+            device,
+            "dvct/mips_layout",
+            &[
+                bind::texture(
+                    0,
+                    cs,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D3,
+                ),
+                bind::texture(
+                    1,
+                    cs,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D3,
+                ),
+                storage_3d(2),
+                storage_3d(3),
+            ],
+        );
+        let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
+        let chain = |pair: &VolumePair| {
+            (1..levels(res))
+                .map(|level| {
+                    let [finer_rv, finer_r] = pair.level(level - 1);
+                    let [rv, r] = pair.level(level);
+                    let group = bind::group(
+                        device,
+                        "dvct/mips_group",
+                        &mips_layout,
+                        &[TextureView(&finer_rv), TextureView(&finer_r), TextureView(&rv), TextureView(&r)],
+                    );
+                    (group, res >> level)
+                })
+                .collect::<Vec<_>>()
+        };
+        let mut mip_groups = vec![chain(&first)];
+        if let Some(second) = &volumes {
+            mip_groups.push(chain(second));
+        }
+        let volumes = volumes.unwrap_or(first);
+
+        // The pixels' cones.
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let d2 = wgpu::TextureViewDimension::D2;
+        let gbuffer_layout = bind::layout(
+            device,
+            "dvct/gbuffer_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::uniform(1, cs),
+                bind::texture(2, cs, unfilterable, d2),
+                bind::texture(3, cs, unfilterable, d2),
+                bind::texture(4, cs, unfilterable, d2),
+                bind::texture(5, cs, unfilterable, d2),
+                bind::texture(6, cs, wgpu::TextureSampleType::Uint, d2),
+                bind::storage(7, cs),
+            ],
+        );
+        let gbuffer_group = bind::group(
+            device,
+            "dvct/gbuffer_group",
+            &gbuffer_layout,
+            &[
+                frame_uniforms.as_entire_binding(),
+                params_buffer.as_entire_binding(),
+                TextureView(&gbuffer.depth_motion.view),
+                TextureView(&gbuffer.albedo_metallic.view),
+                TextureView(&gbuffer.normal_roughness.view),
+                TextureView(&gbuffer.specular.view),
+                TextureView(&gbuffer.flags.view),
+                scene.materials.buffer.as_entire_binding(),
+            ],
+        );
+        let indirect = IndirectLight::new(device, "dvct/indirect", internal_size);
+        let indirect_layout = bind::layout(device, "dvct/indirect_layout", &IndirectLight::storage_entries());
+        let probe_layout = bind::layout(device, "dvct/probe_layout", &GpuProbe::layout_entries(cs));
+        let gather = compute_pipeline(
+            device,
+            "dvct/cones",
+            GATHER_SHADER,
+            &[&gbuffer_layout, &volume_layout, &indirect_layout, &probe_layout],
+        );
+        let gather_groups = [
+            gbuffer_group,
+            volume_group(&volumes, "dvct/volume_group"),
+            bind::group(device, "dvct/indirect_group", &indirect_layout, &indirect.resources()),
+            bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources()),
+        ];
+        Self {
+            params,
+            params_buffer,
+            extent: settings.extent,
+            scene_box,
+            voxels,
+            voxel_words,
+            clear,
+            voxelize,
+            voxelize_group,
+            light,
+            light_groups,
+            bounce,
+            mips,
+            mip_groups,
+            gather,
+            gather_groups,
+            indirect,
+            volumes,
+            stale_voxels: true,
+            stale_light: true,
+            size: internal_size,
+        }
+    }
+
+    /// The volume's uniform (where the cube lies).
+    pub fn params(&self) -> VolumeParams {
+        self.params
+    }
+
+    /// The voxelisation: per voxel, the real and the virtual triangle + 1 (0: empty).
+    pub fn voxels(&self) -> &wgpu::Buffer {
+        &self.voxels
+    }
+
+    fn record_mips(&self, pass: &mut wgpu::ComputePass<'_>, pair: usize) {
+        pass.set_pipeline(&self.mips);
+        for (group, side) in &self.mip_groups[pair] {
+            pass.set_bind_group(0, group, &[]);
+            let n = side.div_ceil(4);
+            pass.dispatch_workgroups(n, n, n);
+        }
+    }
+}
+
+impl LightTransport for DvctMethod {
+    fn prepare(&mut self, queue: &wgpu::Queue, change: &FrameChange) {
+        if change.geometry_moved || change.vertices_deformed {
+            // The cube follows the virtual content (spec §2.12.7: "kept synchronous").
+            let res = self.params.info.x;
+            let (origin, side) = place(change.geometry.virtual_box(), self.scene_box, self.extent);
+            self.params.origin = origin.extend(side / res as f32);
+            queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
+            self.stale_voxels = true;
+        }
+        self.stale_light |= self.stale_voxels || change.moved_light_layers.is_some();
+    }
+
+    fn record(&mut self, rec: &mut Recorder, _: &Rasterizer) {
+        let res = self.params.info.x;
+        let groups = res.div_ceil(4);
+        if std::mem::take(&mut self.stale_voxels) {
+            rec.compute(Self::VOXELIZE_LABEL, |pass| {
+                pass.set_bind_group(0, &self.voxelize_group, &[]);
+                pass.set_pipeline(&self.clear);
+                dispatch_linear(pass, self.voxel_words, 64);
+                pass.set_pipeline(&self.voxelize);
+                dispatch_linear(pass, self.params.info.z, 1);
+            });
+        }
+        if std::mem::take(&mut self.stale_light) {
+            rec.compute(Self::LIGHT_LABEL, |pass| {
+                pass.set_pipeline(&self.light);
+                for (i, g) in self.light_groups.iter().enumerate() {
+                    pass.set_bind_group(i as u32, g, &[]);
+                }
+                pass.dispatch_workgroups(groups, groups, groups);
+                self.record_mips(pass, 0);
+                if let Some((pipeline, bind_groups)) = &self.bounce {
+                    pass.set_pipeline(pipeline);
+                    for (i, g) in bind_groups.iter().enumerate() {
+                        pass.set_bind_group(i as u32, g, &[]);
+                    }
+                    pass.dispatch_workgroups(groups, groups, groups);
+                    self.record_mips(pass, 1);
+                }
+            });
+        }
+        rec.compute(Self::LABEL, |pass| {
+            pass.set_pipeline(&self.gather);
+            for (i, g) in self.gather_groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
+            }
+            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
+        });
+    }
+
+    fn indirect(&self) -> Option<&IndirectLight> {
+        Some(&self.indirect)
+    }
+
+    fn point_light(&self) -> Option<PointLight<'_>> {
+        None
+    }
+
+    fn read_aovs(&self, _: &GpuContext, _: &AovView) -> Result<Vec<Aov>> {
+        Ok(Vec::new())
+    }
+
+    fn seek(&mut self, _: u32) {}
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
+
+/// The voxelisation module (entry points `cs_main` and `clear`).
+pub const VOXELIZE_SHADER: &str = wgsl!(
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "../../../shaders/lib/triangles.wgsl",
+    "volume.wgsl",
+    "voxelize.wgsl",
+);
+
+/// The first bounce's module.
+pub const LIGHT_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
+    "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "../../../shaders/lib/triangles.wgsl",
+    "../../../shaders/lib/material_textures.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/cube.wgsl",
+    "../../../shaders/lib/shadow.wgsl",
+    "volume.wgsl",
+    "surface.wgsl",
+    "light.wgsl",
+);
+
+/// The second bounce's module.
+pub const BOUNCE_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
+    "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "../../../shaders/lib/triangles.wgsl",
+    "../../../shaders/lib/material_textures.wgsl",
+    "../../../shaders/lib/sampling.wgsl",
+    "volume.wgsl",
+    "surface.wgsl",
+    "cones.wgsl",
+    "bounce.wgsl",
+);
+
+/// The mipmap module.
+pub const MIPS_SHADER: &str = wgsl!("mips.wgsl");
+
+/// The pixels' cones module.
+pub const GATHER_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
+    "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/sampling.wgsl",
+    "volume.wgsl",
+    "cones.wgsl",
+    "gather.wgsl",
+);

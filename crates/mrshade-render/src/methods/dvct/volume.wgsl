@@ -1,0 +1,16 @@
+// The volumes of delta voxel cone tracing (Franke §2.13): a cube of `res`³ voxels around the
+// virtual content. Mirrors `VolumeParams` in volume.rs.
+
+struct VolumeParams {
+    // xyz: world position of the volume's lower corner; w: voxel side (m)
+    origin: vec4f,
+    // voxels per side, mip levels, triangles, 1 if the first bounce takes the probe's light
+    info: vec4u,
+    // diffuse cone aperture (diameter / length), unused…
+    cone: vec4f,
+}
+
+fn voxel_side() -> f32 { return params.origin.w; }
+fn volume_side() -> f32 { return params.origin.w * f32(params.info.x); }
+fn voxel_index(v: vec3u) -> u32 { return (v.z * params.info.x + v.y) * params.info.x + v.x; }
+fn voxel_centre(v: vec3u) -> vec3f { return params.origin.xyz + (vec3f(v) + 0.5) * voxel_side(); }

@@ -1,0 +1,70 @@
+//! Known answers of the `dvct` method's passes (Franke §2.13) on the test GPU.
+
+mod common;
+
+use common::Setup;
+use glam::{UVec3, Vec3};
+use mrshade_render::methods::dvct::DvctMethod;
+
+fn dvct(s: &mut Setup, resolution: u32) {
+    s.top_toml = "method = \"dvct\"\n".into();
+    s.extra_toml += &format!("[dvct]\nresolution = {resolution}\n");
+}
+
+/// Distance from `p` to the surface of the axis-aligned cube at `c` of half side `h`.
+fn cube_surface_distance(p: Vec3, c: Vec3, h: f32) -> f32 {
+    let q = (p - c).abs() - Vec3::splat(h);
+    let outside = q.max(Vec3::ZERO).length();
+    let inside = q.max_element().min(0.0);
+    (outside + inside).abs()
+}
+
+#[test]
+fn a_voxelised_cube_is_a_closed_shell_one_voxel_thick() {
+    let mut s = Setup::top_down(32);
+    let (centre, half) = (Vec3::new(0.013, 0.1, -0.021), 0.1);
+    s.cube(centre.to_array(), half, false);
+    dvct(&mut s, 32);
+    let r = s.render();
+    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+    let params = method.params();
+    let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
+    // Twice the cube's edge, centred on it (spec §2.13.1).
+    assert!((voxel * res as f32 - 4.0 * half).abs() < 1e-4, "side {}", voxel * res as f32);
+    let bytes = mrshade_gpu::readback::read_buffer(&r.ctx, method.voxels()).unwrap();
+    let words: &[u32] = bytemuck::cast_slice(&bytes);
+    let (mut holes, mut strays, mut occupied) = (0, 0, 0);
+    for i in 0..res * res * res {
+        let v = UVec3::new(i % res, (i / res) % res, i / (res * res));
+        let p = origin + (v.as_vec3() + 0.5) * voxel;
+        let d = cube_surface_distance(p, centre, half) / voxel;
+        let (real, virt) = (words[2 * i as usize], words[2 * i as usize + 1]);
+        assert_eq!(real, 0, "no real surface in this scene");
+        occupied += (virt != 0) as u32;
+        // A surface passing nearer a voxel's centre than half its side must mark it (a face
+        // on a boundary between two voxels marks one of them: 0.45); none may mark a voxel it
+        // does not come near.
+        holes += (d < 0.45 && virt == 0) as u32;
+        strays += (d > 0.5 * 3f32.sqrt() + 0.01 && virt != 0) as u32;
+    }
+    assert_eq!((holes, strays), (0, 0), "{occupied} voxels occupied");
+    // The shell of a cube 16 voxels wide: between 16³ − 14³ and 18³ − 14³ voxels.
+    assert!((1352..=3088).contains(&occupied), "{occupied} voxels occupied");
+}
+
+#[test]
+fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
+    let mut s = Setup::top_down(48);
+    s.probe = Some([0.8, 0.8, 0.8]);
+    s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
+    s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
+    dvct(&mut s, 32);
+    let r = s.render();
+    // Beside the cube (x ≈ −0.22 m, 0.12 m from its face) the cube hides part of the sky,
+    // farther (x ≈ −0.35 m) less of it.
+    let ratio = |x| r.l_rv(x, 24).x / r.l_r(x, 24).x;
+    let (beside, farther) = (ratio(14), ratio(8));
+    assert!(beside < 0.98 && beside < farther && farther < 1.0, "L_rv / L_r {beside} beside, {farther} farther");
+    // Far outside the volume (a corner of the image, 0.5 m away): identical solutions.
+    assert_eq!(r.l_rv(0, 0), r.l_r(0, 0));
+}
