@@ -160,6 +160,8 @@ fn set_overrides_are_as_strict_as_the_file() {
     assert!(error(&path, &set(&["shadows.resolution=5"])).contains("shadows.resolution"));
     assert!(error(&path, &set(&["no-equals-sign"])).contains("KEY=VALUE"));
     assert!(error(&path, &set(&["composite.mode=\"multiply\""])).contains("multiply"));
+    assert!(error(&path, &set(&["dvct.resolution=100"])).contains("`dvct.resolution` must be a power of two"));
+    assert!(error(&path, &set(&["dvct.voxels=64"])).contains("voxels"));
     // A still's frame count (default 256 for dir) is bounded like the file's.
     assert!(error(&path, &set(&["output.frames=0"])).contains("frames must be between 1 and 10000, got 0"));
     assert!(error(&path, &set(&["output.frames=10001"])).contains("got 10001"));
