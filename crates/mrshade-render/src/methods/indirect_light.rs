@@ -49,7 +49,8 @@ impl IndirectLight {
         std::array::from_fn(|i| bind::texture(first + i as u32, cs, t, wgpu::TextureViewDimension::D2))
     }
 
-    /// Layout entries of the targets as storage textures from binding 0.
+    /// Layout entries of the targets as storage textures from binding 0 (what
+    /// shaders/lib/indirect_out.wgsl declares in group 2).
     pub fn storage_entries() -> [wgpu::BindGroupLayoutEntry; TARGETS] {
         std::array::from_fn(|i| bind::storage_texture(i as u32, FORMAT))
     }

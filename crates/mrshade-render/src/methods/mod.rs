@@ -107,6 +107,55 @@ pub trait LightTransport {
     fn as_any(&self) -> &dyn std::any::Any;
 }
 
+/// Group 0 of a method's per-pixel pass (as the pass's WGSL declares it, read through
+/// shaders/lib/gbuffer_pixel.wgsl): the frame's uniform, the pass's own uniform `params`, the
+/// camera G-buffer's depth, albedo/metallic, normal/roughness, specular and flag targets, and
+/// the materials.
+pub(crate) fn pixel_inputs(
+    device: &wgpu::Device,
+    label: &str,
+    frame_uniforms: &wgpu::Buffer,
+    params: &wgpu::Buffer,
+    gbuffer: &GBuffer,
+    materials: &wgpu::Buffer,
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
+    use mrshade_gpu::bind;
+    let cs = wgpu::ShaderStages::COMPUTE;
+    let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+    let d2 = wgpu::TextureViewDimension::D2;
+    let layout = bind::layout(
+        device,
+        &format!("{label}_layout"),
+        &[
+            bind::uniform(0, cs),
+            bind::uniform(1, cs),
+            bind::texture(2, cs, unfilterable, d2),
+            bind::texture(3, cs, unfilterable, d2),
+            bind::texture(4, cs, unfilterable, d2),
+            bind::texture(5, cs, unfilterable, d2),
+            bind::texture(6, cs, wgpu::TextureSampleType::Uint, d2),
+            bind::storage(7, cs),
+        ],
+    );
+    use wgpu::BindingResource::TextureView;
+    let group = bind::group(
+        device,
+        &format!("{label}_group"),
+        &layout,
+        &[
+            frame_uniforms.as_entire_binding(),
+            params.as_entire_binding(),
+            TextureView(&gbuffer.depth_motion.view),
+            TextureView(&gbuffer.albedo_metallic.view),
+            TextureView(&gbuffer.normal_roughness.view),
+            TextureView(&gbuffer.specular.view),
+            TextureView(&gbuffer.flags.view),
+            materials.as_entire_binding(),
+        ],
+    );
+    (layout, group)
+}
+
 /// A method's entry in the registry.
 pub struct Entry {
     /// Which method.

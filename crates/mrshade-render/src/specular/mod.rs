@@ -581,6 +581,7 @@ pub const TRACE_SHADER: &str = wgsl!(
     "../../shaders/lib/instance.wgsl",
     "../../shaders/lib/triangles.wgsl",
     "../../shaders/lib/brdf.wgsl",
+    "../../shaders/lib/gbuffer_pixel.wgsl",
     "../../shaders/lib/sampling.wgsl",
     "../../shaders/lib/dfg.wgsl",
     "../../shaders/lib/cube.wgsl",

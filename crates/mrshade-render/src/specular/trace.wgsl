@@ -153,15 +153,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     }
     let triangle = camera_visibility[id.y * frame.size.x + id.x].x;
     let owner = triangles[triangle - 1u].x;
-    let centre = vec2f(id.xy) + 0.5;
-    let p1 = world_from_pixel(frame, centre, textureLoad(gbuffer_depth_motion, pixel, 0).x);
-    var s = gbuffer_surface(
-        p1,
-        frame.camera_position.xyz,
-        textureLoad(gbuffer_albedo_metallic, pixel, 0),
-        textureLoad(gbuffer_normal_roughness, pixel, 0),
-        textureLoad(gbuffer_specular, pixel, 0),
-    );
+    var s = pixel_surface(pixel);
+    let p1 = s.position;
     let occlusion = textureLoad(gbuffer_emission_occlusion, pixel, 0).a;
     let view_dir = -s.view;
     let n = microfacet_normal(s.normal, s.view, s.roughness, hash_u32(id.x * 73856093u ^ id.y * 19349663u ^ u32(frame.exposure_env.w) * 83492791u));

@@ -33,7 +33,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (any(id >= vec3u(params.info.x))) { return; }
     let index = voxel_index(id);
     let centre = voxel_centre(id);
-    var rv = textureLoad(volume_rv, id, 0);
+    let first_rv = textureLoad(volume_rv, id, 0);
+    var rv = first_rv;
     var r = textureLoad(volume_r, id, 0);
     let real = voxels[index * 2u];
     let virt = voxels[index * 2u + 1u];
@@ -50,7 +51,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (virt != 0u) {
         let s = voxel_surface(virt - 1u, centre);
         let e = gather_diffuse(s.position, s.normal);
-        rv = vec4f(textureLoad(volume_rv, id, 0).rgb + s.albedo / PI * (e.rv + e.env_rv), 1.0);
+        rv = vec4f(first_rv.rgb + s.albedo / PI * (e.rv + e.env_rv), 1.0);
     }
     textureStore(out_rv, id, rv);
     textureStore(out_r, id, r);

@@ -21,11 +21,7 @@
 @group(1) @binding(1) var volume_r: texture_3d<f32>;
 @group(1) @binding(2) var volume_sampler: sampler;
 
-@group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(2) var out_env_rv: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(3) var out_env_r: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(4) var out_env_weight: texture_storage_2d<rgba16float, write>;
+// Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -45,27 +41,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let pixel = vec2i(id.xy);
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     if (!is_covered(flags)) {
-        textureStore(out_rv, pixel, vec4f(0.0));
-        textureStore(out_r, pixel, vec4f(0.0));
-        textureStore(out_env_rv, pixel, vec4f(0.0));
-        textureStore(out_env_r, pixel, vec4f(0.0));
-        textureStore(out_env_weight, pixel, vec4f(0.0));
+        store_no_indirect(pixel);
         return;
     }
-    let p = world_from_pixel(frame, vec2f(id.xy) + 0.5, textureLoad(gbuffer_depth_motion, pixel, 0).x);
-    var s = gbuffer_surface(
-        p,
-        frame.camera_position.xyz,
-        textureLoad(gbuffer_albedo_metallic, pixel, 0),
-        textureLoad(gbuffer_normal_roughness, pixel, 0),
-        textureLoad(gbuffer_specular, pixel, 0),
-    );
+    var s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
     s.transmission = m.transmission.x;
     let r_p = r_of(flags);
 
-    let o = cone_origin(p, s.normal);
-    let e = gather_diffuse(p, s.normal);
+    let o = cone_origin(s.position, s.normal);
+    let e = gather_diffuse(s.position, s.normal);
     let specular_albedo = env_specular_albedo(s);
     let diffuse = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
     var l_rv = diffuse * e.rv;
@@ -76,9 +61,5 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         l_rv += specular_albedo * hit.rv.rgb;
         l_r += specular_albedo * hit.r.rgb;
     }
-    textureStore(out_rv, pixel, vec4f(l_rv, 1.0));
-    textureStore(out_r, pixel, vec4f(l_r * r_p, 1.0));
-    textureStore(out_env_rv, pixel, vec4f(e.env_rv, 1.0));
-    textureStore(out_env_r, pixel, vec4f(e.env_r, 1.0));
-    textureStore(out_env_weight, pixel, vec4f(e.env, 1.0));
+    store_indirect(pixel, l_rv, l_r * r_p, e.env_rv, e.env_r, e.env);
 }

@@ -125,18 +125,17 @@ impl DvctMethod {
         });
 
         // Voxelisation.
-        let voxelize_layout = bind::layout(
-            device,
-            "dvct/voxelize_layout",
-            &[
-                bind::uniform(0, cs),
-                bind::storage(1, cs),
-                bind::storage(2, cs),
-                bind::storage(3, cs),
-                bind::storage(4, cs),
-                bind::storage_rw(5, cs),
-            ],
-        );
+        // Both groups over the triangles start with the volume's uniform and the geometry.
+        let geometry_entries = [
+            bind::uniform(0, cs),
+            bind::storage(1, cs),
+            bind::storage(2, cs),
+            bind::storage(3, cs),
+            bind::storage(4, cs),
+        ];
+        let mut entries = geometry_entries.to_vec();
+        entries.push(bind::storage_rw(5, cs));
+        let voxelize_layout = bind::layout(device, "dvct/voxelize_layout", &entries);
         let geometry = [
             params_buffer.as_entire_binding(),
             g.instances.as_entire_binding(),
@@ -151,19 +150,9 @@ impl DvctMethod {
         let clear = compute_pipeline_entry(device, "dvct/clear", VOXELIZE_SHADER, "clear", &[&voxelize_layout]);
 
         // Shared groups of the light and bounce passes: the voxels' surfaces.
-        let surface_layout = bind::layout(
-            device,
-            "dvct/surface_layout",
-            &[
-                bind::uniform(0, cs),
-                bind::storage(1, cs),
-                bind::storage(2, cs),
-                bind::storage(3, cs),
-                bind::storage(4, cs),
-                bind::storage(5, cs),
-                bind::storage(6, cs),
-            ],
-        );
+        let mut entries = geometry_entries.to_vec();
+        entries.extend([bind::storage(5, cs), bind::storage(6, cs)]);
+        let surface_layout = bind::layout(device, "dvct/surface_layout", &entries);
         let mut resources = geometry.to_vec();
         resources.push(scene.materials.buffer.as_entire_binding());
         resources.push(voxels.as_entire_binding());
@@ -335,36 +324,13 @@ impl DvctMethod {
         let volumes = volumes.unwrap_or(first);
 
         // The pixels' cones.
-        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
-        let d2 = wgpu::TextureViewDimension::D2;
-        let gbuffer_layout = bind::layout(
+        let (gbuffer_layout, gbuffer_group) = super::pixel_inputs(
             device,
-            "dvct/gbuffer_layout",
-            &[
-                bind::uniform(0, cs),
-                bind::uniform(1, cs),
-                bind::texture(2, cs, unfilterable, d2),
-                bind::texture(3, cs, unfilterable, d2),
-                bind::texture(4, cs, unfilterable, d2),
-                bind::texture(5, cs, unfilterable, d2),
-                bind::texture(6, cs, wgpu::TextureSampleType::Uint, d2),
-                bind::storage(7, cs),
-            ],
-        );
-        let gbuffer_group = bind::group(
-            device,
-            "dvct/gbuffer_group",
-            &gbuffer_layout,
-            &[
-                frame_uniforms.as_entire_binding(),
-                params_buffer.as_entire_binding(),
-                TextureView(&gbuffer.depth_motion.view),
-                TextureView(&gbuffer.albedo_metallic.view),
-                TextureView(&gbuffer.normal_roughness.view),
-                TextureView(&gbuffer.specular.view),
-                TextureView(&gbuffer.flags.view),
-                scene.materials.buffer.as_entire_binding(),
-            ],
+            "dvct/gbuffer",
+            frame_uniforms,
+            &params_buffer,
+            gbuffer,
+            &scene.materials.buffer,
         );
         let indirect = IndirectLight::new(device, "dvct/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dvct/indirect_layout", &IndirectLight::storage_entries());
@@ -549,6 +515,8 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/gbuffer_pixel.wgsl",
+    "../../../shaders/lib/indirect_out.wgsl",
     "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
     "../../../shaders/lib/sampling.wgsl",

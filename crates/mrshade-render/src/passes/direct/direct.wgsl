@@ -36,15 +36,9 @@
 @group(3) @binding(0) var out_l_rv: texture_storage_2d<rgba16float, write>;
 @group(3) @binding(1) var out_l_r: texture_storage_2d<rgba16float, write>;
 
-fn load_surface(pixel: vec2i, p: vec3f) -> Surface {
+fn load_surface(pixel: vec2i) -> Surface {
     let eo = textureLoad(gbuffer_emission_occlusion, pixel, 0);
-    var s = gbuffer_surface(
-        p,
-        frame.camera_position.xyz,
-        textureLoad(gbuffer_albedo_metallic, pixel, 0),
-        textureLoad(gbuffer_normal_roughness, pixel, 0),
-        textureLoad(gbuffer_specular, pixel, 0),
-    );
+    var s = pixel_surface(pixel);
     s.emission = eo.rgb;
     s.occlusion = eo.a;
     return s;
@@ -77,9 +71,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         textureStore(out_l_r, pixel, vec4f(probe, 1.0));
         return;
     }
-    let p = world_from_pixel(frame, centre, textureLoad(gbuffer_depth_motion, pixel, 0).x);
     let m = materials[material_of(flags)];
-    var s = load_surface(pixel, p);
+    var s = load_surface(pixel);
     s.transmission = m.transmission.x;
     let r_p = r_of(flags);
 

@@ -189,6 +189,7 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/gbuffer_pixel.wgsl",
     "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
     "../../../shaders/lib/env_visibility.wgsl",

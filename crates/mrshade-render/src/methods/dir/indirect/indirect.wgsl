@@ -33,11 +33,7 @@ struct IndirectParams {
 @group(1) @binding(2) var<storage, read> ism_real: array<u32>;
 @group(1) @binding(3) var<storage, read> ism_virtual: array<u32>;
 
-@group(2) @binding(0) var out_rv: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(1) var out_r: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(2) var out_env_rv: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(3) var out_env_r: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(4) var out_env_weight: texture_storage_2d<rgba16float, write>;
+// Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 
 // The previous frame's radiance (source of the near-field bounce, nearfield.wgsl).
 @group(3) @binding(0) var previous_l_rv: texture_2d<f32>;
@@ -49,21 +45,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let pixel = vec2i(id.xy);
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     if (!is_covered(flags)) {
-        textureStore(out_rv, pixel, vec4f(0.0));
-        textureStore(out_r, pixel, vec4f(0.0));
-        textureStore(out_env_rv, pixel, vec4f(0.0));
-        textureStore(out_env_r, pixel, vec4f(0.0));
-        textureStore(out_env_weight, pixel, vec4f(0.0));
+        store_no_indirect(pixel);
         return;
     }
-    let p = world_from_pixel(frame, vec2f(id.xy) + 0.5, textureLoad(gbuffer_depth_motion, pixel, 0).x);
-    var s = gbuffer_surface(
-        p,
-        frame.camera_position.xyz,
-        textureLoad(gbuffer_albedo_metallic, pixel, 0),
-        textureLoad(gbuffer_normal_roughness, pixel, 0),
-        textureLoad(gbuffer_specular, pixel, 0),
-    );
+    var s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
     s.transmission = m.transmission.x;
     let traced = is_traced(m);
@@ -82,9 +67,5 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     // Surroundings mirrored by virtual metals (vpl_light.wgsl): p's own radiance of the previous
     // frame stands for theirs.
     let mirrored = light.mirrored * scale * textureLoad(previous_l_rv, pixel, 0).rgb;
-    textureStore(out_rv, pixel, vec4f(light.rv * scale + near.rv + mirrored, 1.0));
-    textureStore(out_r, pixel, vec4f(light.r * scale + near.r, 1.0));
-    textureStore(out_env_rv, pixel, vec4f(light.env_rv, 1.0));
-    textureStore(out_env_r, pixel, vec4f(light.env_r, 1.0));
-    textureStore(out_env_weight, pixel, vec4f(light.env_weight, 1.0));
+    store_indirect(pixel, light.rv * scale + near.rv + mirrored, light.r * scale + near.r, light.env_rv, light.env_r, light.env_weight);
 }

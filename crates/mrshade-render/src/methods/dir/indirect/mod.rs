@@ -68,20 +68,8 @@ impl IndirectPass {
         });
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
-        let scene_layout = bind::layout(
-            device,
-            "indirect/scene_layout",
-            &[
-                bind::uniform(0, cs),
-                bind::uniform(1, cs),
-                bind::texture(2, cs, unfilterable, d2),
-                bind::texture(3, cs, unfilterable, d2),
-                bind::texture(4, cs, unfilterable, d2),
-                bind::texture(5, cs, unfilterable, d2),
-                bind::texture(6, cs, wgpu::TextureSampleType::Uint, d2),
-                bind::storage(7, cs),
-            ],
-        );
+        let (scene_layout, scene_group) =
+            crate::methods::pixel_inputs(device, "indirect/scene", frame, &params, gbuffer, materials);
         let vpl_layout = bind::layout(
             device,
             "indirect/vpl_layout",
@@ -102,21 +90,7 @@ impl IndirectPass {
         use wgpu::BindingResource::TextureView;
         let groups = [0usize, 1].map(|parity| {
             [
-                bind::group(
-                    device,
-                    "indirect/scene_group",
-                    &scene_layout,
-                    &[
-                        frame.as_entire_binding(),
-                        params.as_entire_binding(),
-                        TextureView(&gbuffer.depth_motion.view),
-                        TextureView(&gbuffer.albedo_metallic.view),
-                        TextureView(&gbuffer.normal_roughness.view),
-                        TextureView(&gbuffer.specular.view),
-                        TextureView(&gbuffer.flags.view),
-                        materials.as_entire_binding(),
-                    ],
-                ),
+                scene_group.clone(),
                 bind::group(
                     device,
                     "indirect/vpl_group",
@@ -158,6 +132,8 @@ pub const SHADER: &str = wgsl!(
     "../../../../shaders/lib/frame.wgsl",
     "../../../../shaders/lib/gbuffer.wgsl",
     "../../../../shaders/lib/brdf.wgsl",
+    "../../../../shaders/lib/gbuffer_pixel.wgsl",
+    "../../../../shaders/lib/indirect_out.wgsl",
     "../../../../shaders/lib/sampling.wgsl",
     "../../../../shaders/lib/vpl.wgsl",
     "../../../../shaders/lib/ism.wgsl",
