@@ -14,6 +14,7 @@ pub mod image;
 pub mod math;
 pub mod region;
 pub mod settings;
+pub mod sh;
 pub mod text;
 
 pub use differential::Differential;

@@ -2,8 +2,9 @@
 //! Rust and WGSL has the same size and member offsets on both sides.
 
 use mrshade_render::methods::dir::PointAnchor;
-use mrshade_render::methods::dir::{filter, indirect, ism, rsm, vpl};
-use mrshade_render::methods::dvct;
+use mrshade_render::methods::dir::{filter, indirect, ism, vpl};
+use mrshade_render::methods::rsm;
+use mrshade_render::methods::{dlpv, dvct};
 use mrshade_render::passes::deform::GpuRange;
 use mrshade_render::passes::{composite, deform, direct, encode, gbuffer};
 use mrshade_render::raster;
@@ -41,6 +42,9 @@ const MODULES: &[(&str, &str)] = &[
     ("dvct/bounce", dvct::BOUNCE_SHADER),
     ("dvct/mips", dvct::MIPS_SHADER),
     ("dvct/cones", dvct::GATHER_SHADER),
+    ("dlpv/inject", dlpv::INJECT_SHADER),
+    ("dlpv/propagate", dlpv::PROPAGATE_SHADER),
+    ("dlpv/merge", dlpv::GATHER_SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -75,6 +79,35 @@ fn assert_layout(source: &str, name: &str, size: usize, offsets: &[(&str, usize)
     assert_eq!(span as usize, size, "size of {name}");
     let rust: Vec<(String, u32)> = offsets.iter().map(|(n, o)| (n.to_string(), *o as u32)).collect();
     assert_eq!(members, rust, "members of {name}");
+}
+
+#[test]
+fn dlpv_params_match() {
+    for source in [dlpv::INJECT_SHADER, dlpv::PROPAGATE_SHADER, dlpv::GATHER_SHADER] {
+        assert_layout(
+            source,
+            "DlpvParams",
+            size_of::<dlpv::DlpvParams>(),
+            &[
+                ("origin", offset_of!(dlpv::DlpvParams, origin)),
+                ("info", offset_of!(dlpv::DlpvParams, info)),
+                ("scale", offset_of!(dlpv::DlpvParams, scale)),
+            ],
+        );
+    }
+    // The RSM texel the injection reads is the one the RSM pass writes.
+    assert_eq!(wgsl_layout(dlpv::INJECT_SHADER, "RsmTexel").0 as u64, mrshade_render::methods::rsm::TEXEL_BYTES);
+}
+
+/// shaders/lib/sh.wgsl has the constants of mrshade_core::sh.
+#[test]
+fn sh_constants_match() {
+    use mrshade_core::sh::{Y0, Y1};
+    let source = dlpv::PROPAGATE_SHADER;
+    for (name, value) in [("SH_Y0", Y0), ("SH_Y1", Y1)] {
+        let text = source.split(&format!("const {name}: f32 = ")).nth(1).and_then(|s| s.split(';').next()).unwrap();
+        assert!((text.parse::<f32>().unwrap() - value).abs() < 1e-6, "{name}");
+    }
 }
 
 #[test]

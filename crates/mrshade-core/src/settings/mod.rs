@@ -7,6 +7,7 @@
 mod caustics;
 mod composite;
 mod dir;
+mod dlpv;
 mod dvct;
 mod limits;
 mod reference;
@@ -16,6 +17,7 @@ mod specular;
 pub use caustics::{CausticsSettings, Concentration};
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
+pub use dlpv::DlpvSettings;
 pub use dvct::DvctSettings;
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
@@ -42,11 +44,17 @@ pub enum Method {
     /// mipmapped, and gathered per pixel by nine diffuse cones and one glossy cone; the
     /// cones' occlusion shadows the probe. Punctual shadows come from the shadow maps.
     Dvct,
+    /// Delta light propagation volumes (Franke §2.12): per light (and per directional light
+    /// split from the probe) a real-only and a real+virtual reflective shadow map, their
+    /// difference injected as signed SH into a volume around the virtual content and
+    /// propagated; a regular volume lights the virtual objects. Punctual shadows come from
+    /// the shadow maps, the probe's shadow from the volume.
+    Dlpv,
 }
 
 impl Method {
     /// Every method, for `--help` and error messages.
-    pub const ALL: &'static [Method] = &[Method::Dir, Method::Direct, Method::Dvct];
+    pub const ALL: &'static [Method] = &[Method::Dir, Method::Direct, Method::Dvct, Method::Dlpv];
 
     /// The name used in sessions and on the command line.
     pub fn name(self) -> &'static str {
@@ -54,6 +62,7 @@ impl Method {
             Method::Direct => "direct",
             Method::Dir => "dir",
             Method::Dvct => "dvct",
+            Method::Dlpv => "dlpv",
         }
     }
 
@@ -62,7 +71,7 @@ impl Method {
     /// with the probe unshadowed, `dvct` shadows it by its cones' occlusion.
     pub fn shadows_probe(self) -> bool {
         match self {
-            Method::Direct | Method::Dvct => false,
+            Method::Direct | Method::Dvct | Method::Dlpv => false,
             Method::Dir => true,
         }
     }
@@ -74,7 +83,7 @@ impl Method {
     /// lavapipe. One for `dvct`, which draws no random samples.
     pub fn default_still_frames(self) -> u32 {
         match self {
-            Method::Direct | Method::Dvct => 1,
+            Method::Direct | Method::Dvct | Method::Dlpv => 1,
             Method::Dir => 256,
         }
     }
@@ -102,6 +111,8 @@ pub struct RenderSettings {
     pub dir: DirSettings,
     /// The `dvct` method.
     pub dvct: DvctSettings,
+    /// The `dlpv` method.
+    pub dlpv: DlpvSettings,
     /// Reflections and refractions (the specular stage, with every method).
     pub specular: SpecularSettings,
     /// Caustics of the punctual lights through the specular stage's objects.
@@ -127,6 +138,7 @@ impl RenderSettings {
         self.shadows.validate()?;
         self.dir.validate()?;
         self.dvct.validate()?;
+        self.dlpv.validate()?;
         self.specular.validate()?;
         self.caustics.validate()?;
         self.reference.validate()
@@ -162,6 +174,6 @@ mod tests {
         for m in Method::ALL {
             assert_eq!(Method::from_name(m.name()).unwrap(), *m);
         }
-        assert!(Method::from_name("magic").unwrap_err().contains("dir, direct, dvct"));
+        assert!(Method::from_name("magic").unwrap_err().contains("dir, direct, dvct, dlpv"));
     }
 }

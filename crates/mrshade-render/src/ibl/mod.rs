@@ -7,10 +7,12 @@
 //! footprint of each sample, so a sun pixel spreads smoothly instead of producing fireflies.
 
 mod irradiance;
+mod lights;
 mod prefilter;
 mod pyramid;
 
 pub use irradiance::irradiance_map;
+pub use lights::probe_lights;
 pub use prefilter::prefiltered_radiance;
 pub use pyramid::EquirectPyramid;
 

@@ -13,10 +13,13 @@
 //! choices, `eval`, the invariant and golden tests and `./dev benchmark` loop over
 //! `Method::ALL`.
 
+pub mod around;
 pub mod dir;
 mod direct;
+pub mod dlpv;
 pub mod dvct;
 mod indirect_light;
+pub mod rsm;
 
 pub use indirect_light::{FORMAT as INDIRECT_FORMAT, IndirectLight, PointLight, TARGETS as INDIRECT_TARGETS};
 
@@ -174,6 +177,7 @@ pub const REGISTRY: &[Entry] = &[
     Entry { method: Method::Dir, build: dir::build, fit: dir::fit, estimate: dir::estimate },
     Entry { method: Method::Direct, build: direct::build, fit: direct::fit, estimate: direct::estimate },
     Entry { method: Method::Dvct, build: dvct::build, fit: dvct::fit, estimate: dvct::estimate },
+    Entry { method: Method::Dlpv, build: dlpv::build, fit: dlpv::fit, estimate: dlpv::estimate },
 ];
 
 /// The registry entry of `method`.

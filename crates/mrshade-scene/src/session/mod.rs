@@ -248,6 +248,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         shadows: file.shadows,
         dir: file.dir,
         dvct: file.dvct,
+        dlpv: file.dlpv,
         specular: file.specular,
         caustics: file.caustics,
         reference: file.reference,

@@ -13,7 +13,7 @@ pub mod ism;
 mod limits;
 mod points;
 mod probe_pyramid;
-pub mod rsm;
+use super::rsm;
 pub mod vpl;
 
 pub use aovs::IsmDepths;
@@ -94,6 +94,7 @@ impl DirMethod {
             ctx,
             rasterizer,
             scene,
+            &scene.lights,
             &scene.shadow_layers,
             settings.rsm_resolution,
             session.settings.shadows.resolution,

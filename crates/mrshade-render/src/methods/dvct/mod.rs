@@ -13,7 +13,9 @@
 
 mod volume;
 
-pub use volume::{VolumePair, VolumeParams, levels, place};
+pub use volume::{VolumePair, VolumeParams, levels};
+
+use super::around::place;
 
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;

@@ -31,14 +31,6 @@ struct Source {
     weight: vec4f,
 }
 
-struct RsmTexel {
-    position: vec4f,
-    normal: vec4f,
-    albedo: vec4f,
-    power: vec4f,
-    material: vec4f,
-}
-
 // State of one multiple-bounce slot between its passes.
 struct BounceSlot {
     // xyz: ray origin; w: 0 inactive, 1 a ray (surface source), 2 a surface point lit by the

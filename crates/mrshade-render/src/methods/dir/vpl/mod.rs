@@ -7,7 +7,7 @@
 
 use crate::methods::dir::ProbePyramid;
 use crate::methods::dir::ism::IsmResources;
-use crate::methods::dir::rsm::RsmPass;
+use crate::methods::rsm::RsmPass;
 use crate::scene_gpu::{Geometry, GpuScene};
 use crate::specular::caustics::{LightPhotons, PHOTON_BYTES, SPLAT_DRAWS_BYTES, SPLAT_LIST_BYTES};
 use bytemuck::{Pod, Zeroable};
@@ -425,6 +425,7 @@ macro_rules! vpl_shader {
             "../../../../shaders/lib/vpl.wgsl",
             "../../../../shaders/lib/ism.wgsl",
             "../../../../shaders/lib/photon.wgsl",
+            "../../../../shaders/lib/rsm_texel.wgsl",
             "common.wgsl",
             $file,
         )

@@ -3,20 +3,6 @@
 // (the reflected power) for placing VPLs. One map per shadow layer of every light, at a
 // lower resolution: real-only and virtual-only sets, one layer or six cube faces each.
 
-struct RsmTexel {
-    // xyz: world position; w: 1 where a surface was hit, 0 elsewhere
-    position: vec4f,
-    // xyz: unit normal on the side facing the light; w: roughness
-    normal: vec4f,
-    // rgb: base color; w: metallic
-    albedo: vec4f,
-    // rgb: power Φ reaching this texel's patch (W); w: importance (luminance of reflected power)
-    power: vec4f,
-    // dielectric F0 (mean), dielectric F90, 1 if the surface is real, surface area seen
-    // through the texel (m²)
-    material: vec4f,
-}
-
 struct RsmParams {
     // resolution, layer count, 1 if traced surfaces take no VPLs (their light flies on as
     // photons and lands as caustic VPLs, reflections spec §2.18), unused

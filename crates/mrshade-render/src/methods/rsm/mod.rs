@@ -1,4 +1,4 @@
-//! Reflective shadow maps (Knecht §2.8): each light layer (the same projections as the
+//! Reflective shadow maps (Knecht §2.8; Franke §2.0.2 and §2.12.2 for `dlpv`): each light layer (the same projections as the
 //! shadow maps, at `dir.rsm_resolution`) is rasterised, resolved into surface, material and
 //! received power per texel, and reduced into an importance pyramid for VPL placement.
 //! Real lights keep a real-only and a virtual-only RSM; so do virtual ones here (their
@@ -50,11 +50,14 @@ impl RsmPass {
     /// GPU timing label of resolve and pyramid.
     pub const LABEL: &'static str = "rsm";
 
-    /// Builds the RSMs of `scene`'s light layers at `resolution`.
+    /// Builds the RSMs of `layers` at `resolution`, whose lights are in `lights` (the scene's
+    /// own, or others such as `dlpv`'s lights of the probe).
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         ctx: &GpuContext,
         rasterizer: &Rasterizer,
         scene: &GpuScene,
+        lights: &wgpu::Buffer,
         layers: &[ShadowLayer],
         resolution: u32,
         shadow_resolution: u32,
@@ -155,7 +158,7 @@ impl RsmPass {
                     g.indices.as_entire_binding(),
                     g.triangles.as_entire_binding(),
                     m.buffer.as_entire_binding(),
-                    scene.lights.as_entire_binding(),
+                    lights.as_entire_binding(),
                     world_from_clip.as_entire_binding(),
                     layer_light.as_entire_binding(),
                     visibility.as_entire_binding(),
@@ -261,14 +264,15 @@ impl RsmPass {
 
 /// The resolve module.
 pub const RESOLVE_SHADER: &str = wgsl!(
-    "../../../../shaders/lib/frame.wgsl",
-    "../../../../shaders/lib/gbuffer.wgsl",
-    "../../../../shaders/lib/instance.wgsl",
-    "../../../../shaders/lib/lights.wgsl",
-    "../../../../shaders/lib/triangles.wgsl",
-    "../../../../shaders/lib/material_textures.wgsl",
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/triangles.wgsl",
+    "../../../shaders/lib/material_textures.wgsl",
+    "../../../shaders/lib/rsm_texel.wgsl",
     "resolve.wgsl",
 );
 
 /// The pyramid module.
-pub const PYRAMID_SHADER: &str = wgsl!("pyramid.wgsl");
+pub const PYRAMID_SHADER: &str = wgsl!("../../../shaders/lib/rsm_texel.wgsl", "pyramid.wgsl");

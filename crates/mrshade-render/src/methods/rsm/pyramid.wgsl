@@ -2,14 +2,6 @@
 // 2005): level 0 holds each texel's (importance, coverage), every further level the sums of
 // 2×2 texels, down to 1×1. `cs_base` fills level 0; `cs_reduce` one further level.
 
-struct RsmTexel {
-    position: vec4f,
-    normal: vec4f,
-    albedo: vec4f,
-    power: vec4f,
-    material: vec4f,
-}
-
 struct PyramidParams {
     // RSM resolution, layer count, level to write, floats per layer (all levels)
     size: vec4u,

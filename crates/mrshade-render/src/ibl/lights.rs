@@ -1,0 +1,140 @@
+//! The probe split into directional lights by median cut (Debevec 2005): regions of equal
+//! power, each a light from its power-weighted mean direction carrying the region's
+//! irradiance at normal incidence. `dlpv` draws reflective shadow maps from them (Franke
+//! §2.12.1: real lights "extracted from a hemispherical image").
+
+use glam::{Mat4, Quat, Vec2, Vec3};
+use mrshade_core::HdrImage;
+use mrshade_core::color::luminance;
+use mrshade_core::flags::Realness;
+use mrshade_core::math::{dir_from_equirect_uv, equirect_texel_solid_angle, probe_from_world};
+use mrshade_scene::{Environment, Light, LightKind};
+
+/// Width of the probe level that is cut (coarser is enough for 64 lights).
+const CUT_WIDTH: u32 = 128;
+
+/// A region of texels `[x0, x1) × [y0, y1)`.
+#[derive(Clone, Copy)]
+struct Region {
+    x0: u32,
+    x1: u32,
+    y0: u32,
+    y1: u32,
+}
+
+/// `count` (a power of two) directional lights whose sum approximates `env`'s light, in world
+/// space; regions without power give no light.
+pub fn probe_lights(env: &Environment, count: u32) -> Vec<Light> {
+    if count == 0 {
+        return Vec::new();
+    }
+    let width = env.image.width.clamp(4, CUT_WIDTH);
+    let image = env.image.resized(width, width / 2);
+    let world_from_probe = probe_from_world(env.rotation_deg).transpose();
+    let mut regions = vec![Region { x0: 0, x1: image.width, y0: 0, y1: image.height }];
+    while (regions.len() as u32) < count {
+        regions = regions.iter().flat_map(|r| split(&image, *r)).collect();
+    }
+    regions
+        .iter()
+        .filter_map(|r| {
+            let (dir, irradiance) = summed(&image, *r);
+            let irradiance = irradiance * env.intensity;
+            (irradiance.max_element() > 0.0 && dir.length_squared() > 0.0).then(|| {
+                let shines = -(world_from_probe * dir.normalize());
+                Light {
+                    name: "probe light".into(),
+                    kind: LightKind::Directional,
+                    intensity: irradiance,
+                    world_from_light: Mat4::from_quat(Quat::from_rotation_arc(Vec3::NEG_Z, shines)),
+                    realness: Realness::Real,
+                }
+            })
+        })
+        .collect()
+}
+
+fn texel_direction(image: &HdrImage, x: u32, y: u32) -> Vec3 {
+    dir_from_equirect_uv(Vec2::new((x as f32 + 0.5) / image.width as f32, (y as f32 + 0.5) / image.height as f32))
+}
+
+/// Power-weighted direction sum and `Σ L dω` of a region.
+fn summed(image: &HdrImage, r: Region) -> (Vec3, Vec3) {
+    let (mut dir, mut sum) = (Vec3::ZERO, Vec3::ZERO);
+    for y in r.y0..r.y1 {
+        let dw = equirect_texel_solid_angle(y, image.width, image.height);
+        for x in r.x0..r.x1 {
+            let l = image.get(x, y);
+            dir += texel_direction(image, x, y) * luminance(l) * dw;
+            sum += Vec3::from(l) * dw;
+        }
+    }
+    (dir, sum)
+}
+
+/// Halves `r` across its longer angular side at the power median; a region one texel wide
+/// and high is returned twice, the second empty.
+fn split(image: &HdrImage, r: Region) -> [Region; 2] {
+    let theta = std::f32::consts::PI * (r.y0 + r.y1) as f32 * 0.5 / image.height as f32;
+    let angular_width = (r.x1 - r.x0) as f32 * theta.sin() * 2.0;
+    let across_x = angular_width >= (r.y1 - r.y0) as f32 && r.x1 - r.x0 > 1 || r.y1 - r.y0 == 1;
+    let (lo, hi) = if across_x { (r.x0, r.x1) } else { (r.y0, r.y1) };
+    if hi - lo < 2 {
+        return [r, Region { x0: r.x0, x1: r.x0, y0: r.y0, y1: r.y0 }];
+    }
+    // Power of every column (or row) of the region.
+    let power: Vec<f32> = (lo..hi)
+        .map(|i| {
+            let line = if across_x { Region { x0: i, x1: i + 1, ..r } } else { Region { y0: i, y1: i + 1, ..r } };
+            let mut p = 0.0;
+            for y in line.y0..line.y1 {
+                let dw = equirect_texel_solid_angle(y, image.width, image.height);
+                p += (line.x0..line.x1).map(|x| luminance(image.get(x, y))).sum::<f32>() * dw;
+            }
+            p
+        })
+        .collect();
+    let total: f32 = power.iter().sum();
+    let mut cut = lo + (hi - lo) / 2;
+    if total > 0.0 {
+        let mut acc = 0.0;
+        for (i, p) in power.iter().enumerate() {
+            acc += p;
+            if acc >= total * 0.5 {
+                cut = (lo + i as u32 + 1).clamp(lo + 1, hi - 1);
+                break;
+            }
+        }
+    }
+    if across_x {
+        [Region { x1: cut, ..r }, Region { x0: cut, ..r }]
+    } else {
+        [Region { y1: cut, ..r }, Region { y0: cut, ..r }]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lights_carry_the_probes_power_and_point_away_from_its_sun() {
+        // A dim uniform sky and a bright texel block straight up (+Y): the total irradiance is
+        // kept, and the brightest light shines down.
+        let mut image = HdrImage::filled(64, 32, [0.1; 3]);
+        for y in 0..2 {
+            for x in 0..64 {
+                image.pixels[y * 64 + x] = [50.0; 3];
+            }
+        }
+        let env = Environment { image: image.clone(), rotation_deg: 30.0, intensity: 2.0 };
+        let lights = probe_lights(&env, 8);
+        assert_eq!(lights.len(), 8);
+        let total: Vec3 = lights.iter().map(|l| l.intensity).sum();
+        let (_, want) = summed(&image, Region { x0: 0, x1: 64, y0: 0, y1: 32 });
+        assert!((total - want * 2.0).abs().max_element() < 1e-3 * want.x * 2.0, "{total} vs {want}");
+        let brightest = lights.iter().max_by(|a, b| a.intensity.x.total_cmp(&b.intensity.x)).unwrap();
+        assert!(brightest.direction().dot(Vec3::NEG_Y) > 0.95, "{}", brightest.direction());
+        assert!(probe_lights(&env, 0).is_empty());
+    }
+}

@@ -1,0 +1,122 @@
+// The merge with the real scene (Franke §2.12.6, Eq. 5.14–5.16), per pixel: the accumulated
+// volumes are read trilinearly half a cell along the surface normal (where injection put
+// its light) and evaluated for the inverted normal, E = ⟨c, clamped cosine(−n)⟩ / h², the
+// irradiance of a cell's intensity over its cross-section. Virtual pixels take V_ρ's light
+// (Eq. 5.15); real ones the signed change of V_Δ (Eq. 5.16), added to L_rv only, so that
+// L_rv − L_r is the change and L_r stays the model of the photo. On real pixels the probe's
+// shadow is in the direct change; virtual ones see the probe through the maps of its
+// directional lights (spec §2.3's suggested upgrade of ambient occlusion to directional
+// occlusion): the visibility sums Σw·V over the lights, w = E_k·⟨n, l_k⟩₊ per channel, V = 0
+// where a real or virtual surface lies toward the light (the desk below, the object itself).
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: DlpvParams;
+@group(0) @binding(2) var gbuffer_depth_motion: texture_2d<f32>;
+@group(0) @binding(3) var gbuffer_albedo_metallic: texture_2d<f32>;
+@group(0) @binding(4) var gbuffer_normal_roughness: texture_2d<f32>;
+@group(0) @binding(5) var gbuffer_specular: texture_2d<f32>;
+@group(0) @binding(6) var gbuffer_flags: texture_2d<u32>;
+@group(0) @binding(7) var<storage, read> materials: array<Material>;
+
+@group(1) @binding(0) var<storage, read> volume_rho: array<vec4f>;
+@group(1) @binding(1) var<storage, read> volume_delta: array<vec4f>;
+// The probe's directional lights, their layers' clip_from_world, their maps' texels, their
+// layer pairs, and (pairs, map side, 0, 0).
+@group(1) @binding(2) var<storage, read> probe_lights: array<Light>;
+@group(1) @binding(3) var<storage, read> probe_clip_from_world: array<mat4x4f>;
+@group(1) @binding(4) var<storage, read> probe_rsm: array<RsmTexel>;
+@group(1) @binding(5) var<storage, read> probe_pairs: array<vec4u>;
+@group(1) @binding(6) var<uniform> probe_info: vec4u;
+
+// Whether the map texel of `layer` at `p` holds a surface nearer to the light (along `l`,
+// toward it) than `p`, beyond `bias`.
+fn blocked(layer: u32, p: vec3f, l: vec3f, bias: f32) -> bool {
+    let res = probe_info.y;
+    let clip = probe_clip_from_world[layer] * vec4f(p, 1.0);
+    let ndc = clip.xy / clip.w;
+    if (any(abs(ndc) >= vec2f(1.0))) { return false; }
+    let st = vec2u(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * f32(res));
+    let texel = probe_rsm[(layer * res + min(st.y, res - 1u)) * res + min(st.x, res - 1u)];
+    return texel.position.w > 0.5 && dot(texel.position.xyz - p, l) > bias;
+}
+
+struct ProbeVisibility {
+    visible: vec3f,
+    weight: vec3f,
+}
+
+fn probe_visibility(p: vec3f, n: vec3f) -> ProbeVisibility {
+    var out: ProbeVisibility;
+    for (var i = 0u; i < probe_info.x; i++) {
+        let pair = probe_pairs[i];
+        let light = probe_lights[pair.z];
+        let l = -light.direction_real.xyz;
+        let w = light.intensity.rgb * max(dot(n, l), 0.0);
+        if (all(w == vec3f(0.0))) { continue; }
+        // Two texels of the map (its side is the light's texel size × resolution).
+        let bias = 2.0 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
+        let q = p + n * bias;
+        let v = select(1.0, 0.0, blocked(pair.x, q, l, bias) || blocked(pair.y, q, l, bias));
+        out.visible += w * v;
+        out.weight += w;
+    }
+    return out;
+}
+
+// Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
+
+@group(3) @binding(0) var env_radiance: texture_2d<f32>;
+@group(3) @binding(1) var env_irradiance: texture_2d<f32>;
+@group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
+@group(3) @binding(3) var env_sampler: sampler;
+
+// Irradiance from the volume (V_ρ if `rho`, else V_Δ) at `p` on a surface of normal `n`;
+// zero outside the volume.
+fn volume_irradiance(rho: bool, p: vec3f, n: vec3f) -> vec3f {
+    let x = cell_coords(p + 0.5 * cell_side() * n) - 0.5;
+    let base = vec3i(floor(x));
+    let f = x - floor(x);
+    let lobe = sh4_clamped_cosine(-n);
+    var e = vec3f(0.0);
+    for (var corner = 0u; corner < 8u; corner++) {
+        let o = vec3u(corner & 1u, (corner >> 1u) & 1u, corner >> 2u);
+        let c = base + vec3i(o);
+        if (!cell_inside(c)) { continue; }
+        let w3 = select(1.0 - f, f, vec3<bool>(o == vec3u(1u)));
+        let w = w3.x * w3.y * w3.z;
+        let i = cell_index(c);
+        if (rho) {
+            e += w * vec3f(dot(volume_rho[i], lobe), dot(volume_rho[cells() + i], lobe), dot(volume_rho[2u * cells() + i], lobe));
+        } else {
+            e += w * vec3f(dot(volume_delta[i], lobe), dot(volume_delta[cells() + i], lobe), dot(volume_delta[2u * cells() + i], lobe));
+        }
+    }
+    return e / (cell_side() * cell_side());
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= frame.size.xy)) { return; }
+    let pixel = vec2i(id.xy);
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    if (!is_covered(flags)) {
+        store_no_indirect(pixel);
+        return;
+    }
+    var s = pixel_surface(pixel);
+    let m = materials[material_of(flags)];
+    s.transmission = m.transmission.x;
+    let specular_albedo = env_specular_albedo(s);
+    let diffuse = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
+    if (is_real(flags)) {
+        let light = diffuse * volume_irradiance(false, s.position, s.normal);
+        store_indirect(pixel, light, vec3f(0.0), vec3f(1.0), vec3f(1.0), vec3f(1.0));
+        return;
+    }
+    let light = diffuse * max(volume_irradiance(true, s.position, s.normal), vec3f(0.0));
+    var v = probe_visibility(s.position, s.normal);
+    if (all(v.weight == vec3f(0.0))) {
+        v = ProbeVisibility(vec3f(1.0), vec3f(1.0));
+    }
+    store_indirect(pixel, light, vec3f(0.0), v.visible, v.visible, v.weight);
+}

@@ -1,0 +1,587 @@
+//! Delta light propagation volumes, the `dlpv` method (Franke §2.12, [Fra13a]), its passes in
+//! the order of the spec's pseudo-code (§2.12.8): per light a real-only and a virtual-only
+//! reflective shadow map (their nearer hit per texel is R_ρ, the real one R_μ) → split
+//! injection into signed SH volumes → propagation → per-pixel merge into the
+//! [`IndirectLight`] that direct lighting adds. Maps, injection and propagation are redone
+//! only when geometry or a light moved; the merge runs every frame.
+//!
+//! Where it departs from the thesis, and why: punctual lights' direct change (their shadows)
+//! comes from the frame's real-only and virtual-only shadow maps, exact as with every other
+//! method; the probe, which the thesis leaves to other techniques, is split into directional
+//! lights by median cut (`dlpv.probe_lights`) whose maps inject its bounce light and, as the
+//! direct change, its shadow. Texels seen alike by R_ρ and R_μ cancel exactly at injection.
+
+use super::around::place;
+use super::rsm::RsmPass;
+use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
+use crate::limits::Fit;
+use crate::outputs::Aov;
+use crate::raster::Rasterizer;
+use crate::scene_gpu::{GpuProbe, ShadowLayer, pack_lights};
+use anyhow::{Result, bail};
+use bytemuck::{Pod, Zeroable};
+use glam::{UVec4, Vec3, Vec4};
+use mrshade_core::flags::Realness;
+use mrshade_core::settings::{RenderSettings, ShadowSettings};
+use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
+use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::{GpuContext, bind, wgsl};
+use mrshade_scene::{Light, LightKind};
+use wgpu::util::DeviceExt;
+
+/// Mirrors `DlpvParams` in volume.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct DlpvParams {
+    /// xyz: world position of the lower corner; w: cell side (m).
+    pub origin: Vec4,
+    /// Cells per side, cells in all, source, 1 if propagation clamps negative flux.
+    pub info: UVec4,
+    /// Fixed-point units per watt, unused…
+    pub scale: Vec4,
+}
+
+/// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
+const SOURCES: u32 = 3;
+const SOURCE_RHO: usize = 0;
+const SOURCE_INDIRECT: usize = 1;
+const SOURCE_DIRECT: usize = 2;
+
+/// Bytes of one cell of one float volume: four coefficients × three channels.
+const CELL_BYTES: u64 = 48;
+/// Fixed-point headroom: all injected flux of a source, times the largest coefficient
+/// magnitude, stays below 2³¹ units.
+const FIXED_POINT_RANGE: f32 = (1u32 << 29) as f32;
+
+/// One light set's maps and how their layers pair up.
+struct LightSet {
+    rsm: RsmPass,
+    inject_group: wgpu::BindGroup,
+    pairs: u32,
+    pairs_buffer: wgpu::Buffer,
+    /// The set's lights (the probe's follow the volume; the scene's are the scene's).
+    layers_of: LayersOf,
+}
+
+/// Where a set's layers come from.
+enum LayersOf {
+    /// The scene's lights: the frame's shadow layers.
+    Scene,
+    /// Directional lights split from the probe, their maps around the volume.
+    Probe(ProbeSet),
+}
+
+/// The probe's directional lights on the GPU.
+struct ProbeSet {
+    lights: Vec<Light>,
+    /// Their `GpuLight`s.
+    buffer: wgpu::Buffer,
+    /// `clip_from_world` of their layers (the merge looks up visibility).
+    clip_from_world: wgpu::Buffer,
+}
+
+impl ProbeSet {
+    fn new(
+        device: &wgpu::Device,
+        lights: Vec<Light>,
+        cube: (Vec3, Vec3),
+        shadows: &ShadowSettings,
+    ) -> (Self, Vec<ShadowLayer>) {
+        let (gpu_lights, layers) = pack_lights(&lights, Some(cube), shadows);
+        let storage = |label: &str, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
+        let set = Self {
+            lights,
+            buffer: storage("dlpv/probe_lights", bytemuck::cast_slice(&gpu_lights)),
+            clip_from_world: storage("dlpv/probe_clip_from_world", bytemuck::cast_slice(&clips)),
+        };
+        (set, layers)
+    }
+
+    /// Moves the maps to cover `cube`; the layers for the RSM pass.
+    fn follow(&self, queue: &wgpu::Queue, cube: (Vec3, Vec3), shadows: &ShadowSettings) -> Vec<ShadowLayer> {
+        let (gpu_lights, layers) = pack_lights(&self.lights, Some(cube), shadows);
+        let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
+        queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&gpu_lights));
+        queue.write_buffer(&self.clip_from_world, 0, bytemuck::cast_slice(&clips));
+        layers
+    }
+}
+
+/// The method's passes and volumes.
+pub struct DlpvMethod {
+    params: DlpvParams,
+    /// Per source: its uniform (source index, clamping) for seeding and propagation.
+    source_params: Vec<wgpu::Buffer>,
+    extent: f32,
+    scene_box: Option<(Vec3, Vec3)>,
+    shadows: ShadowSettings,
+    sets: Vec<LightSet>,
+    injected: wgpu::Buffer,
+    inject: wgpu::ComputePipeline,
+    seed: wgpu::ComputePipeline,
+    propagate: wgpu::ComputePipeline,
+    /// Per source: seed group (into scratch A), A → B and B → A groups.
+    propagate_groups: Vec<[wgpu::BindGroup; 3]>,
+    steps: [u32; 3],
+    /// Accumulated V_ρ and V_Δ.
+    pub volumes: [wgpu::Buffer; 2],
+    gather: wgpu::ComputePipeline,
+    gather_groups: [wgpu::BindGroup; 4],
+    /// What direct lighting adds.
+    pub indirect: IndirectLight,
+    stale: bool,
+    size: (u32, u32),
+}
+
+/// Builds the method (the registry's `build`).
+pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
+    Box::new(DlpvMethod::new(inputs))
+}
+
+/// Halves the maps until every set's texels fit one buffer binding.
+pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
+    let dlpv = &mut settings.dlpv;
+    let layers = fit.shadow_layers.max(2 * dlpv.probe_lights as u64);
+    let max_binding = fit.max_binding;
+    let fits = |res: u64| layers * res * res * super::rsm::TEXEL_BYTES <= max_binding;
+    if !fit.shrink("dlpv.rsm_resolution", &mut dlpv.rsm_resolution, &fits, 32) {
+        bail!(
+            "the scene's lights need {layers} RSM layers, more than one GPU buffer of this device holds even at 32×32"
+        );
+    }
+    Ok(())
+}
+
+/// GPU bytes of the method, item by item.
+pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: u64) -> Vec<(&'static str, u64)> {
+    let d = &settings.dlpv;
+    let cells = (d.resolution as u64).pow(3);
+    let rsm = d.rsm_resolution as u64;
+    let layers = layers + 2 * d.probe_lights as u64;
+    vec![
+        ("dlpv screen targets (output size × supersample²)", internal_pixels * 5 * 8),
+        (
+            "dlpv RSMs ((light and probe-light layers) × dlpv.rsm_resolution²)",
+            layers * (rsm * rsm * (8 + super::rsm::TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES),
+        ),
+        ("dlpv volumes (dlpv.resolution³)", cells * (SOURCES as u64 * CELL_BYTES + 4 * CELL_BYTES)),
+    ]
+}
+
+/// Pairs of a set's layers: (real-only layer, virtual-only layer, light, 1 if the light's
+/// direct change is injected), face by face.
+fn layer_pairs(layers: &[ShadowLayer], direct: bool) -> Vec<UVec4> {
+    let real = layers.iter().enumerate().filter(|(_, l)| l.casters == Realness::Real);
+    real.map(|(i, l)| {
+        let face = layers[..i].iter().filter(|o| o.light == l.light && o.casters == Realness::Real).count();
+        let virtual_layer = layers
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.light == l.light && o.casters == Realness::Virtual)
+            .nth(face)
+            .map(|(j, _)| j)
+            .expect("every real layer has a virtual twin");
+        UVec4::new(i as u32, virtual_layer as u32, l.light, direct as u32)
+    })
+    .collect()
+}
+
+/// Upper bound of the power all of `lights`' map texels receive (W), for the fixed point:
+/// intensity × 4π for lights at a point, irradiance × the map's square for directional ones
+/// (of side `2·radius`).
+fn power_bound(lights: &[Light], radius: f32) -> f32 {
+    lights
+        .iter()
+        .map(|l| {
+            let i = l.intensity.max_element().max(0.0);
+            match l.kind {
+                LightKind::Directional => i * 4.0 * radius * radius,
+                _ => i * 4.0 * std::f32::consts::PI,
+            }
+        })
+        .sum()
+}
+
+/// Half the diagonal of a box (what `pack_lights` covers a directional map with).
+fn bounding_radius(bounds: Option<(Vec3, Vec3)>) -> f32 {
+    bounds.map_or(1.0, |(lo, hi)| ((hi - lo).length() * 0.5).max(1e-3))
+}
+
+impl DlpvMethod {
+    /// GPU timing label of the maps' rasterisation (the RSM pass's).
+    pub const RSM_LABEL: &'static str = RsmPass::LABEL;
+    /// GPU timing label of injection and propagation.
+    pub const PROPAGATE_LABEL: &'static str = "dlpv-propagate";
+    /// GPU timing label of the per-pixel merge.
+    pub const LABEL: &'static str = "dlpv-merge";
+
+    /// Builds every pass for the session of `inputs`.
+    pub fn new(inputs: &MethodInputs) -> Self {
+        let MethodInputs { ctx, session, scene, rasterizer, frame_uniforms, gbuffer, internal_size, .. } = *inputs;
+        let device = &ctx.device;
+        let settings = &session.settings.dlpv;
+        let res = settings.resolution;
+        let cells = res * res * res;
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let scene_box = session.scene.bounds();
+        let (origin, side) = place(scene.geometry.virtual_box(), scene_box, settings.extent);
+        let cube = (origin, origin + Vec3::splat(side));
+
+        // The light sets: the scene's lights, and the probe's split into directional ones.
+        let probe_lights = match &session.environment {
+            Some(env) => crate::ibl::probe_lights(env, settings.probe_lights),
+            None => Vec::new(),
+        };
+        let shadows = &session.settings.shadows;
+        let scene_radius = bounding_radius(scene_box);
+        let bound =
+            power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_lights, bounding_radius(Some(cube)));
+        let params = DlpvParams {
+            origin: origin.extend(side / res as f32),
+            info: UVec4::new(res, cells, 0, 0),
+            scale: Vec4::new(FIXED_POINT_RANGE / bound.max(1e-12), 0.0, 0.0, 0.0),
+        };
+        let injected = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/injected"),
+            size: SOURCES as u64 * cells as u64 * CELL_BYTES,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let uniform = |label: &str, p: &DlpvParams| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::bytes_of(p),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        let source_params: Vec<wgpu::Buffer> = (0..SOURCES)
+            .map(|s| {
+                let p = DlpvParams { info: UVec4::new(res, cells, s, (s as usize == SOURCE_RHO) as u32), ..params };
+                uniform(&format!("dlpv/params_source{s}"), &p)
+            })
+            .collect();
+
+        let inject_layout = bind::layout(
+            device,
+            "dlpv/inject_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::storage(1, cs),
+                bind::storage(2, cs),
+                bind::storage(3, cs),
+                bind::storage_rw(4, cs),
+                bind::uniform(5, cs),
+            ],
+        );
+        let inject = compute_pipeline(device, "dlpv/inject", INJECT_SHADER, &[&inject_layout]);
+        let set = |label: &str, lights: &wgpu::Buffer, layers: &[ShadowLayer], direct: bool, layers_of: LayersOf| {
+            let rsm = RsmPass::new(
+                ctx,
+                rasterizer,
+                scene,
+                lights,
+                layers,
+                settings.rsm_resolution,
+                shadows.resolution,
+                false,
+            );
+            let pairs = layer_pairs(layers, direct);
+            let mut pair_words = pairs.clone();
+            pair_words.resize(pairs.len().max(1), UVec4::ZERO);
+            let pairs_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("dlpv/{label}_pairs")),
+                contents: bytemuck::cast_slice(&pair_words),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let size = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("dlpv/{label}_rsm_size")),
+                contents: bytemuck::bytes_of(&UVec4::new(settings.rsm_resolution, pairs.len() as u32, 0, 0)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let inject_group = bind::group(
+                device,
+                &format!("dlpv/{label}_inject_group"),
+                &inject_layout,
+                &[
+                    source_params[0].as_entire_binding(),
+                    rsm.texels.as_entire_binding(),
+                    pairs_buffer.as_entire_binding(),
+                    lights.as_entire_binding(),
+                    injected.as_entire_binding(),
+                    size.as_entire_binding(),
+                ],
+            );
+            LightSet { rsm, inject_group, pairs: pairs.len() as u32, pairs_buffer, layers_of }
+        };
+        let mut sets = Vec::new();
+        if !scene.shadow_layers.is_empty() {
+            sets.push(set("scene_lights", &scene.lights, &scene.shadow_layers, false, LayersOf::Scene));
+        }
+        if !probe_lights.is_empty() {
+            let (probe, layers) = ProbeSet::new(device, probe_lights, cube, shadows);
+            let buffer = probe.buffer.clone();
+            sets.push(set("probe_lights", &buffer, &layers, true, LayersOf::Probe(probe)));
+        }
+
+        // Seeding and propagation: per source, scratch A and B and the accumulated volume.
+        let volume = |label: &str| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: cells as u64 * CELL_BYTES,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let scratch = [volume("dlpv/scratch_a"), volume("dlpv/scratch_b")];
+        let volumes = [volume("dlpv/rho"), volume("dlpv/delta")];
+        let propagate_layout = bind::layout(
+            device,
+            "dlpv/propagate_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::storage(1, cs),
+                bind::storage(2, cs),
+                bind::storage_rw(3, cs),
+                bind::storage_rw(4, cs),
+            ],
+        );
+        let seed = compute_pipeline_entry(device, "dlpv/seed", PROPAGATE_SHADER, "seed", &[&propagate_layout]);
+        let propagate =
+            compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
+        let propagate_groups = (0..SOURCES as usize)
+            .map(|s| {
+                let accumulated = &volumes[(s != SOURCE_RHO) as usize];
+                let group = |name: &str, from: &wgpu::Buffer, to: &wgpu::Buffer| {
+                    bind::group(
+                        device,
+                        &format!("dlpv/source{s}_{name}"),
+                        &propagate_layout,
+                        &[
+                            source_params[s].as_entire_binding(),
+                            injected.as_entire_binding(),
+                            from.as_entire_binding(),
+                            to.as_entire_binding(),
+                            accumulated.as_entire_binding(),
+                        ],
+                    )
+                };
+                // Seeding reads no volume: B stands in for its unused `source`.
+                [
+                    group("seed", &scratch[1], &scratch[0]),
+                    group("a_to_b", &scratch[0], &scratch[1]),
+                    group("b_to_a", &scratch[1], &scratch[0]),
+                ]
+            })
+            .collect();
+        let mut steps = [0; 3];
+        steps[SOURCE_RHO] = settings.propagation_steps;
+        steps[SOURCE_INDIRECT] = settings.propagation_steps;
+        steps[SOURCE_DIRECT] = settings.direct_steps;
+
+        // The per-pixel merge.
+        let (gbuffer_layout, gbuffer_group) = super::pixel_inputs(
+            device,
+            "dlpv/gbuffer",
+            frame_uniforms,
+            &source_params[0],
+            gbuffer,
+            &scene.materials.buffer,
+        );
+        let mut entries: Vec<_> = (0..6).map(|b| bind::storage(b, cs)).collect();
+        entries.push(bind::uniform(6, cs));
+        let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
+        // The probe's lights for the virtual pixels' visibility (none: one unused word each).
+        let probe_set = sets.iter().find_map(|s| match &s.layers_of {
+            LayersOf::Probe(p) => Some((p, s)),
+            LayersOf::Scene => None,
+        });
+        let unused = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/no_probe_lights"),
+            size: 256,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let info = UVec4::new(probe_set.map_or(0, |(_, s)| s.pairs), settings.rsm_resolution, shadows.resolution, 0);
+        let probe_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dlpv/probe_info"),
+            contents: bytemuck::bytes_of(&info),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let probe_resources = match probe_set {
+            Some((p, s)) => [&p.buffer, &p.clip_from_world, &s.rsm.texels, &s.pairs_buffer],
+            None => [&unused, &unused, &unused, &unused],
+        };
+        let mut resources = vec![volumes[0].as_entire_binding(), volumes[1].as_entire_binding()];
+        resources.extend(probe_resources.map(|b| b.as_entire_binding()));
+        resources.push(probe_info.as_entire_binding());
+        let volume_group = bind::group(device, "dlpv/volume_group", &volume_layout, &resources);
+        let indirect = IndirectLight::new(device, "dlpv/indirect", internal_size);
+        let indirect_layout = bind::layout(device, "dlpv/indirect_layout", &IndirectLight::storage_entries());
+        let probe_layout = bind::layout(device, "dlpv/probe_layout", &GpuProbe::layout_entries(cs));
+        let gather = compute_pipeline(
+            device,
+            "dlpv/merge",
+            GATHER_SHADER,
+            &[&gbuffer_layout, &volume_layout, &indirect_layout, &probe_layout],
+        );
+        let gather_groups = [
+            gbuffer_group,
+            volume_group,
+            bind::group(device, "dlpv/indirect_group", &indirect_layout, &indirect.resources()),
+            bind::group(device, "dlpv/probe_group", &probe_layout, &scene.probe.resources()),
+        ];
+        Self {
+            params,
+            source_params,
+            extent: settings.extent,
+            scene_box,
+            shadows: *shadows,
+            sets,
+            injected,
+            inject,
+            seed,
+            propagate,
+            propagate_groups,
+            steps,
+            volumes,
+            gather,
+            gather_groups,
+            indirect,
+            stale: true,
+            size: internal_size,
+        }
+    }
+
+    /// The volumes' uniform (where the cube lies, the fixed-point scale).
+    pub fn params(&self) -> DlpvParams {
+        self.params
+    }
+
+    /// Moves the cube to follow the virtual content and the probe's maps with it.
+    fn follow(&mut self, queue: &wgpu::Queue, geometry: &crate::scene_gpu::Geometry) {
+        let res = self.params.info.x;
+        let (origin, side) = place(geometry.virtual_box(), self.scene_box, self.extent);
+        self.params.origin = origin.extend(side / res as f32);
+        for buffer in &self.source_params {
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&self.params.origin));
+        }
+        let cube = (origin, origin + Vec3::splat(side));
+        for set in &mut self.sets {
+            if let LayersOf::Probe(probe) = &set.layers_of {
+                let layers = probe.follow(queue, cube, &self.shadows);
+                set.rsm.set_layers(queue, &layers);
+            }
+        }
+    }
+}
+
+impl LightTransport for DlpvMethod {
+    fn prepare(&mut self, queue: &wgpu::Queue, change: &FrameChange) {
+        if change.geometry_moved || change.vertices_deformed {
+            // The cube follows the virtual content (spec §2.12.7: "kept synchronous").
+            self.follow(queue, change.geometry);
+            self.stale = true;
+        }
+        if let Some(layers) = change.moved_light_layers {
+            for set in &mut self.sets {
+                if let LayersOf::Scene = set.layers_of {
+                    set.rsm.set_layers(queue, layers);
+                }
+            }
+            self.stale = true;
+        }
+    }
+
+    fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        if std::mem::take(&mut self.stale) {
+            for set in &self.sets {
+                set.rsm.record(rec, rasterizer);
+            }
+            rec.encoder.clear_buffer(&self.injected, 0, None);
+            for v in &self.volumes {
+                rec.encoder.clear_buffer(v, 0, None);
+            }
+            let cells = self.params.info.y;
+            rec.compute(Self::PROPAGATE_LABEL, |pass| {
+                pass.set_pipeline(&self.inject);
+                for set in self.sets.iter().filter(|s| s.pairs > 0) {
+                    let groups = set.rsm.resolution.div_ceil(8);
+                    pass.set_bind_group(0, &set.inject_group, &[]);
+                    pass.dispatch_workgroups(groups, groups, set.pairs);
+                }
+                for (source, groups) in self.propagate_groups.iter().enumerate() {
+                    pass.set_pipeline(&self.seed);
+                    pass.set_bind_group(0, &groups[0], &[]);
+                    dispatch_linear(pass, cells, 64);
+                    pass.set_pipeline(&self.propagate);
+                    for step in 0..self.steps[source] {
+                        pass.set_bind_group(0, &groups[1 + (step % 2) as usize], &[]);
+                        dispatch_linear(pass, cells, 64);
+                    }
+                }
+            });
+        }
+        rec.compute(Self::LABEL, |pass| {
+            pass.set_pipeline(&self.gather);
+            for (i, g) in self.gather_groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
+            }
+            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
+        });
+    }
+
+    fn indirect(&self) -> Option<&IndirectLight> {
+        Some(&self.indirect)
+    }
+
+    fn point_light(&self) -> Option<PointLight<'_>> {
+        None
+    }
+
+    fn read_aovs(&self, _: &GpuContext, _: &AovView) -> Result<Vec<Aov>> {
+        Ok(Vec::new())
+    }
+
+    fn seek(&mut self, _: u32) {}
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
+
+/// The injection module.
+pub const INJECT_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/sh.wgsl",
+    "../../../shaders/lib/rsm_texel.wgsl",
+    "volume.wgsl",
+    "inject.wgsl",
+);
+
+/// The seeding and propagation module (entry points `seed` and `propagate`).
+pub const PROPAGATE_SHADER: &str =
+    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/sh.wgsl", "volume.wgsl", "propagate.wgsl",);
+
+/// The per-pixel merge module.
+pub const GATHER_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/gbuffer_pixel.wgsl",
+    "../../../shaders/lib/indirect_out.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
+    "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/sh.wgsl",
+    "../../../shaders/lib/rsm_texel.wgsl",
+    "volume.wgsl",
+    "gather.wgsl",
+);

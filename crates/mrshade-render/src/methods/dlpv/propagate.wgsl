@@ -1,0 +1,85 @@
+// Propagation (Franke §2.12.2 step 2, Kaplanyan & Dachsbacher 2010), as a gather: every cell
+// collects, from each of its six neighbours, the flux through the five faces of its own that
+// the shared face does not hide: flux = ΔΩ·I_neighbour(direction of the face's centre), ΔΩ
+// the face's solid angle from the neighbour's centre (0.4007 for the far face, 0.4234 for a
+// side face; the 30 sum to 4π, so an isotropic cell passes on all its flux), re-emitted
+// from the face as a point light ⟨n_face, ω⟩₊·flux/π. V_ρ clamps negative flux (a regular
+// LPV); the delta volume keeps it (antiradiance). Each step's result is added to the
+// accumulated volume. `seed` turns the fixed-point injection into the first step; only the
+// direct change keeps the injected cells themselves in the result (the shadow lies on the
+// surface it was injected at). Bounce light is read from the first propagation on, so a VPL
+// does not light the cell it lies in, its own surface (self-illumination, spec §2.12.9).
+
+@group(0) @binding(0) var<uniform> params: DlpvParams;
+@group(0) @binding(1) var<storage, read> injected: array<i32>;
+@group(0) @binding(2) var<storage, read> source: array<vec4f>;
+@group(0) @binding(3) var<storage, read_write> destination: array<vec4f>;
+@group(0) @binding(4) var<storage, read_write> accumulated: array<vec4f>;
+
+const FAR_FACE_SOLID_ANGLE: f32 = 0.4006696846;
+const SIDE_FACE_SOLID_ANGLE: f32 = 0.4234413544;
+
+// +x, −x, +y, −y, +z, −z.
+fn axis(i: u32) -> vec3i {
+    var v = vec3i(0);
+    v[i / 2u] = select(1, -1, (i & 1u) == 1u);
+    return v;
+}
+
+fn cell_of(id: u32) -> vec3i {
+    let res = params.info.x;
+    return vec3i(vec3u(id % res, (id / res) % res, id / (res * res)));
+}
+
+@compute @workgroup_size(64)
+fn seed(@builtin(global_invocation_id) id: vec3u) {
+    let cell = id.x;
+    if (cell >= cells()) { return; }
+    for (var ch = 0u; ch < 3u; ch++) {
+        let at = ((params.info.z * 3u + ch) * cells() + cell) * 4u;
+        let c = vec4f(f32(injected[at]), f32(injected[at + 1u]), f32(injected[at + 2u]), f32(injected[at + 3u])) / params.scale.x;
+        destination[ch * cells() + cell] = c;
+        if (params.info.z == SOURCE_DIRECT) {
+            accumulated[ch * cells() + cell] += c;
+        }
+    }
+}
+
+@compute @workgroup_size(64)
+fn propagate(@builtin(global_invocation_id) id: vec3u) {
+    let index = id.x;
+    if (index >= cells()) { return; }
+    let cell = cell_of(index);
+    let clamp_negative = params.info.w == 1u;
+    var gathered = array<vec4f, 3>(vec4f(0.0), vec4f(0.0), vec4f(0.0));
+    for (var a = 0u; a < 6u; a++) {
+        // Light flowing along `flow` from the neighbour behind.
+        let flow = axis(a);
+        let from_cell = cell - flow;
+        if (!cell_inside(from_cell)) { continue; }
+        let from_index = cell_index(from_cell);
+        let sender = array<vec4f, 3>(
+            source[from_index],
+            source[cells() + from_index],
+            source[2u * cells() + from_index],
+        );
+        for (var f = 0u; f < 6u; f++) {
+            let face = axis(f);
+            if (all(face == -flow)) { continue; }
+            let is_far = all(face == flow);
+            let to_face = normalize(vec3f(flow) + select(0.5 * vec3f(face), vec3f(0.0), is_far));
+            let solid_angle = select(SIDE_FACE_SOLID_ANGLE, FAR_FACE_SOLID_ANGLE, is_far);
+            let toward = sh4(to_face);
+            let emit = sh4_clamped_cosine(vec3f(face)) / PI;
+            for (var ch = 0u; ch < 3u; ch++) {
+                var flux = solid_angle * dot(sender[ch], toward);
+                if (clamp_negative) { flux = max(flux, 0.0); }
+                gathered[ch] += flux * emit;
+            }
+        }
+    }
+    for (var ch = 0u; ch < 3u; ch++) {
+        destination[ch * cells() + index] = gathered[ch];
+        accumulated[ch * cells() + index] += gathered[ch];
+    }
+}
