@@ -2,8 +2,9 @@
 // volumes are read trilinearly half a cell along the surface normal (where injection put
 // its light) and evaluated for the inverted normal, E = ⟨c, clamped cosine(−n)⟩ / h², the
 // irradiance of a cell's intensity over its cross-section. Virtual pixels take V_ρ's light
-// (Eq. 5.15); real ones the signed change of V_Δ (Eq. 5.16), added to L_rv only, so that
-// L_rv − L_r is the change and L_r stays the model of the photo. On real pixels the probe's
+// (Eq. 5.15); real ones the real scene's bounce light of V_μ in both L_rv and L_r (the
+// model of the photo the α-scaled composite divides by) and the signed change of V_Δ in
+// L_rv (Eq. 5.16), so that L_rv − L_r is the change. On real pixels the probe's
 // shadow is in the direct change; virtual ones see the probe through the maps of its
 // directional lights (spec §2.3's suggested upgrade of ambient occlusion to directional
 // occlusion): the visibility sums Σw·V over the lights, w = E_k·⟨n, l_k⟩₊ per channel, V = 0
@@ -20,6 +21,7 @@
 
 @group(1) @binding(0) var<storage, read> volume_rho: array<vec4f>;
 @group(1) @binding(1) var<storage, read> volume_delta: array<vec4f>;
+@group(1) @binding(7) var<storage, read> volume_mu: array<vec4f>;
 // The probe's directional lights, their layers' clip_from_world, their maps' texels, their
 // layer pairs, and (pairs, map side, 0, 0).
 @group(1) @binding(2) var<storage, read> probe_lights: array<Light>;
@@ -70,9 +72,21 @@ fn probe_visibility(p: vec3f, n: vec3f) -> ProbeVisibility {
 @group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
 @group(3) @binding(3) var env_sampler: sampler;
 
-// Irradiance from the volume (V_ρ if `rho`, else V_Δ) at `p` on a surface of normal `n`;
-// zero outside the volume.
-fn volume_irradiance(rho: bool, p: vec3f, n: vec3f) -> vec3f {
+const VOLUME_RHO: u32 = 0u;
+const VOLUME_DELTA: u32 = 1u;
+const VOLUME_MU: u32 = 2u;
+
+fn cell_light(volume: u32, i: u32, lobe: vec4f) -> vec3f {
+    let n = cells();
+    switch volume {
+        case VOLUME_RHO: { return vec3f(dot(volume_rho[i], lobe), dot(volume_rho[n + i], lobe), dot(volume_rho[2u * n + i], lobe)); }
+        case VOLUME_MU: { return vec3f(dot(volume_mu[i], lobe), dot(volume_mu[n + i], lobe), dot(volume_mu[2u * n + i], lobe)); }
+        default: { return vec3f(dot(volume_delta[i], lobe), dot(volume_delta[n + i], lobe), dot(volume_delta[2u * n + i], lobe)); }
+    }
+}
+
+// Irradiance from `volume` at `p` on a surface of normal `n`; zero outside the volume.
+fn volume_irradiance(volume: u32, p: vec3f, n: vec3f) -> vec3f {
     let x = cell_coords(p + 0.5 * cell_side() * n) - 0.5;
     let base = vec3i(floor(x));
     let f = x - floor(x);
@@ -84,12 +98,7 @@ fn volume_irradiance(rho: bool, p: vec3f, n: vec3f) -> vec3f {
         if (!cell_inside(c)) { continue; }
         let w3 = select(1.0 - f, f, vec3<bool>(o == vec3u(1u)));
         let w = w3.x * w3.y * w3.z;
-        let i = cell_index(c);
-        if (rho) {
-            e += w * vec3f(dot(volume_rho[i], lobe), dot(volume_rho[cells() + i], lobe), dot(volume_rho[2u * cells() + i], lobe));
-        } else {
-            e += w * vec3f(dot(volume_delta[i], lobe), dot(volume_delta[cells() + i], lobe), dot(volume_delta[2u * cells() + i], lobe));
-        }
+        e += w * cell_light(volume, cell_index(c), lobe);
     }
     return e / (cell_side() * cell_side());
 }
@@ -109,11 +118,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let specular_albedo = env_specular_albedo(s);
     let diffuse = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
     if (is_real(flags)) {
-        let light = diffuse * volume_irradiance(false, s.position, s.normal);
-        store_indirect(pixel, light, vec3f(0.0), vec3f(1.0), vec3f(1.0), vec3f(1.0));
+        let model = diffuse * max(volume_irradiance(VOLUME_MU, s.position, s.normal), vec3f(0.0));
+        let change = diffuse * volume_irradiance(VOLUME_DELTA, s.position, s.normal);
+        store_indirect(pixel, model + change, model, vec3f(1.0), vec3f(1.0), vec3f(1.0));
         return;
     }
-    let light = diffuse * max(volume_irradiance(true, s.position, s.normal), vec3f(0.0));
+    let light = diffuse * max(volume_irradiance(VOLUME_RHO, s.position, s.normal), vec3f(0.0));
     var v = probe_visibility(s.position, s.normal);
     if (all(v.weight == vec3f(0.0))) {
         v = ProbeVisibility(vec3f(1.0), vec3f(1.0));

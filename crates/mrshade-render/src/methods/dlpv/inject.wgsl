@@ -1,10 +1,13 @@
 // Split injection (Franke §2.12.2–§2.12.4, Eq. 5.12–5.13). One invocation per texel of a
 // pair of a light's reflective shadow maps, real-only and virtual-only (their nearer hit is
-// R_ρ's texel, the real one R_μ's):
+// R_ρ's texel, the real one R_μ's; a virtual light has no R_μ, all its light is change):
 // - V_ρ: R_ρ's real VPLs, I(ω) = Φ/π·⟨n, ω⟩₊, for the virtual objects' indirect light. A
 //   virtual object's own VPLs are left out: at the volume's resolution they light the object
 //   they lie on (the thesis's "self-illumination", spec §2.12.9), which made the bunny of
 //   desk-bunny 60 % too bright; light between virtual objects is lost with them;
+// - V_μ: R_μ's VPLs, the real scene's own bounce light (the model of the photo's indirect
+//   light: real pixels add it to L_r and L_rv, so that the α-scaled composite divides the
+//   photo by a model that has it, as with the other methods);
 // - indirect change: +R_ρ's VPL − R_μ's VPL, only where they differ (where a virtual surface is
 //   nearer); texels seen by both cancel exactly instead of by subtractive blending;
 // - direct change (lights split from the probe only; punctual shadows come from the shadow
@@ -75,24 +78,40 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let real_hit = real.position.w > 0.5;
     let virtual_hit = virt.position.w > 0.5;
     let virtual_nearer = virtual_hit && (!real_hit || light_depth(light, virt.position.xyz) < light_depth(light, real.position.xyz));
-    if (virtual_nearer) {
-        splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
-        if (real_hit) {
+    if (light.direction_real.w < 0.5) {
+        // A virtual light exists in the real+virtual solution only: R_μ is empty, and all
+        // of R_ρ's bounce light is change.
+        if (virtual_nearer) {
+            splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
+        } else if (real_hit) {
             let r = vpl(real);
-            splat(SOURCE_INDIRECT, vpl_position(real), array<vec4f, 3>(-r[0], -r[1], -r[2]));
-            if (pair.w == 1u) {
-                // Lobe along the light (a direction, as SH of a delta), scaled so that the
-                // query on this surface returns the irradiance taken away (the L1 projection
-                // of a delta answers (1/4 + cos/2) of it).
-                var d = light.direction_real.xyz;
-                if (light.info.x != LIGHT_DIRECTIONAL) { d = normalize(real.position.xyz - light.position.xyz); }
-                let cos_n = max(dot(-d, real.normal.xyz), 0.25);
-                let lobe = sh4(d) / (0.25 + 0.5 * cos_n);
-                let lost = -real.power.rgb;
-                splat(SOURCE_DIRECT, real.position.xyz - 0.5 * cell_side() * d, array<vec4f, 3>(lobe * lost.r, lobe * lost.g, lobe * lost.b));
-            }
+            splat(SOURCE_RHO, vpl_position(real), r);
+            splat(SOURCE_INDIRECT, vpl_position(real), r);
         }
-    } else if (real_hit) {
-        splat(SOURCE_RHO, vpl_position(real), vpl(real));
+        return;
+    }
+    if (real_hit) {
+        splat(SOURCE_MU, vpl_position(real), vpl(real));
+    }
+    if (!virtual_nearer) {
+        if (real_hit) {
+            splat(SOURCE_RHO, vpl_position(real), vpl(real));
+        }
+        return;
+    }
+    splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
+    if (!real_hit) { return; }
+    let r = vpl(real);
+    splat(SOURCE_INDIRECT, vpl_position(real), array<vec4f, 3>(-r[0], -r[1], -r[2]));
+    if (pair.w == 1u) {
+        // Lobe along the light (a direction, as SH of a delta), scaled so that the query on
+        // this surface returns the irradiance taken away (the L1 projection of a delta
+        // answers (1/4 + cos/2) of it).
+        var d = light.direction_real.xyz;
+        if (light.info.x != LIGHT_DIRECTIONAL) { d = normalize(real.position.xyz - light.position.xyz); }
+        let cos_n = max(dot(-d, real.normal.xyz), 0.25);
+        let lobe = sh4(d) / (0.25 + 0.5 * cos_n);
+        let lost = -real.power.rgb;
+        splat(SOURCE_DIRECT, real.position.xyz - 0.5 * cell_side() * d, array<vec4f, 3>(lobe * lost.r, lobe * lost.g, lobe * lost.b));
     }
 }

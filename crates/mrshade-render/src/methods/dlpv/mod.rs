@@ -42,10 +42,13 @@ pub struct DlpvParams {
 }
 
 /// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
-const SOURCES: u32 = 3;
+const SOURCES: u32 = 4;
 const SOURCE_RHO: usize = 0;
 const SOURCE_INDIRECT: usize = 1;
 const SOURCE_DIRECT: usize = 2;
+const SOURCE_MU: usize = 3;
+/// The accumulated volume of every source: V_ρ, V_Δ (both changes), V_μ.
+const VOLUME_OF_SOURCE: [usize; SOURCES as usize] = [0, 1, 1, 2];
 
 /// Bytes of one cell of one float volume: four coefficients × three channels.
 const CELL_BYTES: u64 = 48;
@@ -80,14 +83,40 @@ struct ProbeSet {
     clip_from_world: wgpu::Buffer,
 }
 
+/// The probe's lights and their layers: maps as wide as the cube's bounding sphere (where
+/// their texels matter) but deep enough toward the light to hold everything of the scene
+/// there (the walls and ceiling of a room hide the sky from what is inside).
+fn probe_layers(
+    lights: &[Light],
+    cube: (Vec3, Vec3),
+    scene_box: Option<(Vec3, Vec3)>,
+    shadows: &ShadowSettings,
+) -> (Vec<crate::scene_gpu::GpuLight>, Vec<ShadowLayer>) {
+    let (gpu_lights, mut layers) = pack_lights(lights, Some(cube), shadows);
+    let center = (cube.0 + cube.1) * 0.5;
+    let radius = bounding_radius(Some(cube));
+    for layer in &mut layers {
+        let dir = lights[layer.light as usize].direction();
+        let toward_light = scene_box.map_or(0.0, |b| {
+            mrshade_core::math::box_corners(b).iter().map(|c| (*c - center).dot(-dir)).fold(0.0, f32::max)
+        });
+        let back = toward_light.max(radius) * 1.01 + 1e-3;
+        let eye = center - dir * back;
+        let proj = glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, back + radius, 0.0);
+        layer.clip_from_world = proj * crate::scene_gpu::look_to(eye, dir);
+    }
+    (gpu_lights, layers)
+}
+
 impl ProbeSet {
     fn new(
         device: &wgpu::Device,
         lights: Vec<Light>,
         cube: (Vec3, Vec3),
+        scene_box: Option<(Vec3, Vec3)>,
         shadows: &ShadowSettings,
     ) -> (Self, Vec<ShadowLayer>) {
-        let (gpu_lights, layers) = pack_lights(&lights, Some(cube), shadows);
+        let (gpu_lights, layers) = probe_layers(&lights, cube, scene_box, shadows);
         let storage = |label: &str, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -105,8 +134,14 @@ impl ProbeSet {
     }
 
     /// Moves the maps to cover `cube`; the layers for the RSM pass.
-    fn follow(&self, queue: &wgpu::Queue, cube: (Vec3, Vec3), shadows: &ShadowSettings) -> Vec<ShadowLayer> {
-        let (gpu_lights, layers) = pack_lights(&self.lights, Some(cube), shadows);
+    fn follow(
+        &self,
+        queue: &wgpu::Queue,
+        cube: (Vec3, Vec3),
+        scene_box: Option<(Vec3, Vec3)>,
+        shadows: &ShadowSettings,
+    ) -> Vec<ShadowLayer> {
+        let (gpu_lights, layers) = probe_layers(&self.lights, cube, scene_box, shadows);
         let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
         queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&gpu_lights));
         queue.write_buffer(&self.clip_from_world, 0, bytemuck::cast_slice(&clips));
@@ -129,9 +164,9 @@ pub struct DlpvMethod {
     propagate: wgpu::ComputePipeline,
     /// Per source: seed group (into scratch A), A → B and B → A groups.
     propagate_groups: Vec<[wgpu::BindGroup; 3]>,
-    steps: [u32; 3],
-    /// Accumulated V_ρ and V_Δ.
-    pub volumes: [wgpu::Buffer; 2],
+    steps: [u32; SOURCES as usize],
+    /// Accumulated V_ρ, V_Δ and V_μ.
+    pub volumes: [wgpu::Buffer; 3],
     gather: wgpu::ComputePipeline,
     gather_groups: [wgpu::BindGroup; 4],
     /// What direct lighting adds.
@@ -171,7 +206,7 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             "dlpv RSMs ((light and probe-light layers) × dlpv.rsm_resolution²)",
             layers * (rsm * rsm * (8 + super::rsm::TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES),
         ),
-        ("dlpv volumes (dlpv.resolution³)", cells * (SOURCES as u64 * CELL_BYTES + 4 * CELL_BYTES)),
+        ("dlpv volumes (dlpv.resolution³)", cells * (SOURCES as u64 * CELL_BYTES + 5 * CELL_BYTES)),
     ]
 }
 
@@ -263,7 +298,8 @@ impl DlpvMethod {
         };
         let source_params: Vec<wgpu::Buffer> = (0..SOURCES)
             .map(|s| {
-                let p = DlpvParams { info: UVec4::new(res, cells, s, (s as usize == SOURCE_RHO) as u32), ..params };
+                let clamps = s as usize == SOURCE_RHO || s as usize == SOURCE_MU;
+                let p = DlpvParams { info: UVec4::new(res, cells, s, clamps as u32), ..params };
                 uniform(&format!("dlpv/params_source{s}"), &p)
             })
             .collect();
@@ -325,7 +361,7 @@ impl DlpvMethod {
             sets.push(set("scene_lights", &scene.lights, &scene.shadow_layers, false, LayersOf::Scene));
         }
         if !probe_lights.is_empty() {
-            let (probe, layers) = ProbeSet::new(device, probe_lights, cube, shadows);
+            let (probe, layers) = ProbeSet::new(device, probe_lights, cube, scene_box, shadows);
             let buffer = probe.buffer.clone();
             sets.push(set("probe_lights", &buffer, &layers, true, LayersOf::Probe(probe)));
         }
@@ -340,7 +376,7 @@ impl DlpvMethod {
             })
         };
         let scratch = [volume("dlpv/scratch_a"), volume("dlpv/scratch_b")];
-        let volumes = [volume("dlpv/rho"), volume("dlpv/delta")];
+        let volumes = [volume("dlpv/rho"), volume("dlpv/delta"), volume("dlpv/mu")];
         let propagate_layout = bind::layout(
             device,
             "dlpv/propagate_layout",
@@ -357,7 +393,7 @@ impl DlpvMethod {
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
         let propagate_groups = (0..SOURCES as usize)
             .map(|s| {
-                let accumulated = &volumes[(s != SOURCE_RHO) as usize];
+                let accumulated = &volumes[VOLUME_OF_SOURCE[s]];
                 let group = |name: &str, from: &wgpu::Buffer, to: &wgpu::Buffer| {
                     bind::group(
                         device,
@@ -380,8 +416,9 @@ impl DlpvMethod {
                 ]
             })
             .collect();
-        let mut steps = [0; 3];
+        let mut steps = [0; SOURCES as usize];
         steps[SOURCE_RHO] = settings.propagation_steps;
+        steps[SOURCE_MU] = settings.propagation_steps;
         steps[SOURCE_INDIRECT] = settings.propagation_steps;
         steps[SOURCE_DIRECT] = settings.direct_steps;
 
@@ -396,6 +433,7 @@ impl DlpvMethod {
         );
         let mut entries: Vec<_> = (0..6).map(|b| bind::storage(b, cs)).collect();
         entries.push(bind::uniform(6, cs));
+        entries.push(bind::storage(7, cs));
         let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
         // The probe's lights for the virtual pixels' visibility (none: one unused word each).
         let probe_set = sets.iter().find_map(|s| match &s.layers_of {
@@ -421,6 +459,7 @@ impl DlpvMethod {
         let mut resources = vec![volumes[0].as_entire_binding(), volumes[1].as_entire_binding()];
         resources.extend(probe_resources.map(|b| b.as_entire_binding()));
         resources.push(probe_info.as_entire_binding());
+        resources.push(volumes[2].as_entire_binding());
         let volume_group = bind::group(device, "dlpv/volume_group", &volume_layout, &resources);
         let indirect = IndirectLight::new(device, "dlpv/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dlpv/indirect_layout", &IndirectLight::storage_entries());
@@ -475,7 +514,7 @@ impl DlpvMethod {
         let cube = (origin, origin + Vec3::splat(side));
         for set in &mut self.sets {
             if let LayersOf::Probe(probe) = &set.layers_of {
-                let layers = probe.follow(queue, cube, &self.shadows);
+                let layers = probe.follow(queue, cube, self.scene_box, &self.shadows);
                 set.rsm.set_layers(queue, &layers);
             }
         }

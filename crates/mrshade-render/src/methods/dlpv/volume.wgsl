@@ -6,7 +6,7 @@ struct DlpvParams {
     // xyz: world position of the lower corner; w: cell side h (m)
     origin: vec4f,
     // cells per side, cells in all, this dispatch's source (0: V_ρ, 1: indirect change,
-    // 2: direct change), 1 if propagation clamps negative flux (V_ρ)
+    // 2: direct change, 3: V_μ), 1 if propagation clamps negative flux (V_ρ, V_μ)
     info: vec4u,
     // fixed-point units per watt of injected intensity coefficients, unused…
     scale: vec4f,
@@ -15,6 +15,7 @@ struct DlpvParams {
 const SOURCE_RHO: u32 = 0u;
 const SOURCE_INDIRECT: u32 = 1u;
 const SOURCE_DIRECT: u32 = 2u;
+const SOURCE_MU: u32 = 3u;
 
 fn cells() -> u32 { return params.info.y; }
 fn cell_side() -> f32 { return params.origin.w; }
