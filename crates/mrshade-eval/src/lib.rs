@@ -2,6 +2,7 @@
 //! the whole image or over a mask, and the evaluation report (Markdown, JSON, HTML), with its
 //! part for posed image sequences.
 
+mod chart;
 pub mod metrics;
 pub mod report;
 pub mod sequence;

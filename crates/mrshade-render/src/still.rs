@@ -28,10 +28,34 @@ impl Renderer {
         ctx: &GpuContext,
         frames: u32,
         inputs: &FrameInputs,
-        mut progress: impl FnMut(u32),
+        progress: impl FnMut(u32),
     ) -> Result<Composite> {
+        Ok(self.still(ctx, frames, inputs, false, progress)?.0)
+    }
+
+    /// [`Renderer::render_still`], also returning every frame's GPU milliseconds from the
+    /// timestamp queries (empty where the adapter has none): what the still cost the GPU.
+    pub fn render_still_timed(
+        &mut self,
+        ctx: &GpuContext,
+        frames: u32,
+        progress: impl FnMut(u32),
+    ) -> Result<(Composite, Vec<f64>)> {
+        let inputs = FrameInputs::camera(self.session_camera);
+        self.still(ctx, frames, &inputs, ctx.timestamps, progress)
+    }
+
+    fn still(
+        &mut self,
+        ctx: &GpuContext,
+        frames: u32,
+        inputs: &FrameInputs,
+        timed: bool,
+        mut progress: impl FnMut(u32),
+    ) -> Result<(Composite, Vec<f64>)> {
         let averaged = (frames / 2).max(1);
-        let mut profiler = mrshade_gpu::timing::profiler(ctx, false)?;
+        let mut profiler = mrshade_gpu::timing::profiler(ctx, timed)?;
+        let mut gpu_ms = Vec::new();
         let mut mean = Average::default();
         // The average is the still's own smoothing of the specular light (unbiased).
         self.with_specular_smoothing_paused(true, |renderer| {
@@ -44,6 +68,9 @@ impl Renderer {
                 // The photo and transforms are uploaded once; later frames keep them.
                 let frame = if i == 0 { *inputs } else { FrameInputs::camera(inputs.camera) };
                 renderer.render_untimed(ctx, &mut profiler, &FrameInputs { jitter, ..frame })?;
+                while let Some(results) = profiler.process_finished_frame(ctx.queue.get_timestamp_period()) {
+                    gpu_ms.extend(mrshade_gpu::timing::frame_ms(&mrshade_gpu::timing::flatten(&results)));
+                }
                 progress(i + 1);
                 if averaging {
                     mean.add(renderer.read_composite(ctx)?);
@@ -51,7 +78,7 @@ impl Renderer {
             }
             Ok(())
         })?;
-        mean.finish()
+        Ok((mean.finish()?, gpu_ms))
     }
 
     /// Runs `f` with the specular stage's temporal smoothing off while `paused` (then on

@@ -257,6 +257,19 @@ pub struct EvalArgs {
     /// reported as the method `METHOD-stills`, to compare footage with (real-time methods).
     #[arg(long)]
     pub stills: bool,
+    /// Give every real-time method the same GPU time for a still (milliseconds, repeatable
+    /// or comma-separated: one row per budget): as many frames as fit, measured by the
+    /// timestamp queries, so temporal methods accumulate over them (Franke's equal-time
+    /// comparison). Still datasets only; needs an adapter with timestamp queries.
+    #[arg(long = "budget-ms", value_name = "MS", value_delimiter = ',', value_parser = positive_ms)]
+    pub budget_ms: Vec<f64>,
+}
+
+fn positive_ms(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(ms) if ms.is_finite() && ms > 0.0 && ms <= 3.6e6 => Ok(ms),
+        _ => Err(format!("a budget is a number of milliseconds above 0 and at most 3600000, got `{text}`")),
+    }
 }
 
 /// `mrshade info`.

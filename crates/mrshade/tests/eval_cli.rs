@@ -123,3 +123,41 @@ fn eval_rejects_misfit_answers_and_unknown_methods() {
     let o = mrshade(&["eval", dataset.to_str().unwrap(), "--method", "magic"]);
     assert!(!o.status.success() && stderr(&o).contains("reference"), "{}", stderr(&o));
 }
+
+#[test]
+fn eval_times_methods_on_the_gpu_and_gives_them_equal_budgets() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = dir.path().join("report");
+    let dataset = assets("benchmark/desk-bunny");
+    // dir's still is 256 frames; a budget of a few milliseconds of lavapipe fits fewer.
+    let o = mrshade(&[
+        "eval",
+        &dataset,
+        "--method",
+        "direct,dir",
+        "--set",
+        "output.frames=6",
+        "--budget-ms",
+        "1,1000000",
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(report.join("report.json")).unwrap()).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 4, "one row per method and budget");
+    for row in rows {
+        let total = row["gpu_ms"].as_f64().unwrap();
+        let per_frame = row["gpu_ms_frame"].as_f64().unwrap();
+        assert!(total > 0.0 && per_frame > 0.0 && per_frame <= total, "{row}");
+    }
+    // 1 ms fits one frame at least; a huge budget fits the whole still.
+    assert_eq!(rows[0]["setting"], "1 frame in 1 GPU ms");
+    assert_eq!(rows[3]["setting"], "6 frames in 1000000 GPU ms");
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(html.contains("Error against GPU time") && html.contains("<svg"), "the chart");
+    // A budget must be a positive number of milliseconds: one line naming it.
+    let o = mrshade(&["eval", "-q", &dataset, "--method", "direct", "--budget-ms", "0"]);
+    assert!(!o.status.success() && stderr(&o).contains("budget"), "{}", stderr(&o));
+}

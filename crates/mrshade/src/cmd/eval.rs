@@ -9,7 +9,6 @@ mod sequence;
 
 use super::compare::load as load_rgb8;
 use super::reference::render_reference;
-use super::render::render_still;
 use super::{Log, open_gpu};
 use crate::args::EvalArgs;
 use anyhow::{Context, Result, bail};
@@ -42,7 +41,11 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
     // Check every dataset before hours of rendering.
     let mut plans = Vec::with_capacity(args.datasets.len());
     for dir in &args.datasets {
-        plans.push(check(dir, &methods, args)?);
+        let plan = check(dir, &methods, args)?;
+        if plan.is_some() && !args.budget_ms.is_empty() {
+            bail!("dataset {}: --budget-ms is for still datasets; a sequence is scored frame by frame", dir.display());
+        }
+        plans.push(plan);
     }
     let ctx = if methods.iter().any(|m| *m != "reference") { Some(open_gpu(gpu, log)?) } else { None };
     let (mut rows, mut sequences) = (Vec::new(), Vec::new());
@@ -51,6 +54,12 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         // Folder names reach the terminal and the report.
         let scene = mrshade_core::text::printable(&scene).into_owned();
         if let Some(plan) = plan {
+            if !args.budget_ms.is_empty() {
+                bail!(
+                    "dataset {}: --budget-ms is for still datasets; a sequence is scored frame by frame",
+                    dir.display()
+                );
+            }
             log.info(format!("[{}/{}] {scene}: {}", i + 1, args.datasets.len(), methods.join(", ")));
             sequences.push(sequence::eval_sequence(dir, &scene, plan, &methods, args, ctx.as_ref(), log)?);
             continue;
@@ -67,34 +76,44 @@ pub fn eval(args: &EvalArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
         for method in &methods {
             log.info(format!("[{}/{}] {scene}: {method}", i + 1, args.datasets.len()));
             let session = load(dir, method, args, answer.width, answer.height)?;
-            let (image, seconds, device) = render(&session, method, ctx.as_ref(), log)?;
-            let result = to_rgb8(&image);
-            let comparison = compare(&answer, &result).map_err(anyhow::Error::msg)?;
-            let frame = comparison.scores(None).map_err(anyhow::Error::msg)?;
-            let in_region = comparison.scores(Some(&region)).map_err(anyhow::Error::msg)?;
-            let images = match &args.report {
-                Some(out) => write_images(out, &scene, method, &result, &comparison.heatmap)?,
-                None => RowImages::default(),
-            };
-            let row = Row {
-                scene: scene.clone(),
-                method: method.to_string(),
-                setting: setting(&session, method),
-                flip_region: in_region.flip_heatmap_mean,
-                flip_frame: frame.flip_heatmap_mean,
-                flip_error_region: in_region.flip,
-                psnr_frame: frame.psnr.is_finite().then_some(frame.psnr),
-                ssim_frame: frame.ssim,
-                region_fraction: region.iter().filter(|&&m| m).count() as f64 / region.len() as f64,
-                seconds,
-                device,
-                images,
-            };
-            log.info(format!(
-                "{scene} {method}: FLIP region {:.4}, frame {:.4}, PSNR {:.2} dB ({:.1} s)",
-                row.flip_region, row.flip_frame, frame.psnr, seconds
-            ));
-            rows.push(row);
+            for run in runs(&session, method, &args.budget_ms, ctx.as_ref(), log)? {
+                let result = to_rgb8(&run.image);
+                let comparison = compare(&answer, &result).map_err(anyhow::Error::msg)?;
+                let frame = comparison.scores(None).map_err(anyhow::Error::msg)?;
+                let in_region = comparison.scores(Some(&region)).map_err(anyhow::Error::msg)?;
+                let name = match run.budget_ms {
+                    Some(b) => format!("{method}@{b}ms"),
+                    None => method.to_string(),
+                };
+                let images = match &args.report {
+                    Some(out) => write_images(out, &scene, &name, &result, &comparison.heatmap)?,
+                    None => RowImages::default(),
+                };
+                let gpu_ms = (!run.gpu_ms.is_empty()).then(|| run.gpu_ms.iter().sum::<f64>());
+                let row = Row {
+                    scene: scene.clone(),
+                    method: method.to_string(),
+                    setting: setting(&session, method, &run),
+                    gpu_ms,
+                    gpu_ms_frame: gpu_ms.map(|total| total / run.gpu_ms.len() as f64),
+                    budget_ms: run.budget_ms,
+                    flip_region: in_region.flip_heatmap_mean,
+                    flip_frame: frame.flip_heatmap_mean,
+                    flip_error_region: in_region.flip,
+                    psnr_frame: frame.psnr.is_finite().then_some(frame.psnr),
+                    ssim_frame: frame.ssim,
+                    region_fraction: region.iter().filter(|&&m| m).count() as f64 / region.len() as f64,
+                    seconds: run.seconds,
+                    device: run.device,
+                    images,
+                };
+                let gpu = row.gpu_ms.map_or(String::new(), |ms| format!(", {ms:.2} GPU ms"));
+                log.info(format!(
+                    "{scene} {name}: FLIP region {:.4}, frame {:.4}, PSNR {:.2} dB ({:.1} s{gpu})",
+                    row.flip_region, row.flip_frame, frame.psnr, row.seconds
+                ));
+                rows.push(row);
+            }
         }
     }
     let report = Report { command: command_line(), version: env!("CARGO_PKG_VERSION").into(), rows, sequences };
@@ -146,26 +165,70 @@ fn load(dir: &Path, method: &str, args: &EvalArgs, width: u32, height: u32) -> R
     Session::load(&dir.join("session.toml"), &overrides)
 }
 
-fn setting(session: &Session, method: &str) -> String {
+fn setting(session: &Session, method: &str, run: &Run) -> String {
     if method == "reference" {
-        format!("{} spp", session.settings.reference.spp)
-    } else {
-        let frames = session.output.frames;
-        format!("{frames} frame{}", if frames == 1 { "" } else { "s" })
+        return format!("{} spp", session.settings.reference.spp);
+    }
+    let frames = run.frames;
+    let plural = if frames == 1 { "" } else { "s" };
+    match run.budget_ms {
+        Some(b) => format!("{frames} frame{plural} in {b} GPU ms"),
+        None => format!("{frames} frame{plural}"),
     }
 }
 
-/// The composite, the render's wall-clock seconds, and where it ran.
-fn render(session: &Session, method: &str, ctx: Option<&GpuContext>, log: Log) -> Result<(HdrImage, f64, String)> {
+/// One rendered still of a method.
+struct Run {
+    image: HdrImage,
+    /// Wall-clock seconds of the render.
+    seconds: f64,
+    /// Where it ran.
+    device: String,
+    /// GPU milliseconds of every frame (empty for the reference or without timestamps).
+    gpu_ms: Vec<f64>,
+    /// Frames rendered.
+    frames: u32,
+    /// The GPU budget it was given, if any.
+    budget_ms: Option<f64>,
+}
+
+/// The stills of `method`: one at the session's frames, or one per budget, each with as
+/// many frames as the session's own still spends within it (at least one).
+fn runs(session: &Session, method: &str, budgets: &[f64], ctx: Option<&GpuContext>, log: Log) -> Result<Vec<Run>> {
     if method == "reference" {
         let (image, seconds) = render_reference(session, log)?;
-        return Ok((image.composite, seconds, format!("CPU, {} threads", rayon::current_num_threads())));
+        let device = format!("CPU, {} threads", rayon::current_num_threads());
+        let frames = 1;
+        return Ok(vec![Run { image: image.composite, seconds, device, gpu_ms: Vec::new(), frames, budget_ms: None }]);
     }
     let ctx = ctx.context("no GPU context")?;
-    let started = Instant::now();
-    let mut renderer = Renderer::new(ctx, session)?;
-    let composite = render_still(&mut renderer, ctx, session.output.frames, log)?;
-    Ok((composite.image, started.elapsed().as_secs_f64(), ctx.info.name.clone()))
+    let still = |frames: u32, budget_ms: Option<f64>| -> Result<Run> {
+        let started = Instant::now();
+        let mut renderer = Renderer::new(ctx, session)?;
+        let bar = log.progress(frames as u64, crate::cmd::STILL_BAR)?;
+        let (composite, gpu_ms) = renderer.render_still_timed(ctx, frames, |i| bar.set_position(i as u64))?;
+        bar.finish_and_clear();
+        let seconds = started.elapsed().as_secs_f64();
+        Ok(Run { image: composite.image, seconds, device: ctx.info.name.clone(), gpu_ms, frames, budget_ms })
+    };
+    let full = still(session.output.frames, None)?;
+    if budgets.is_empty() {
+        return Ok(vec![full]);
+    }
+    if full.gpu_ms.len() != full.frames as usize {
+        bail!("--budget-ms needs GPU timestamp queries, which adapter {} does not offer", ctx.info.name);
+    }
+    budgets
+        .iter()
+        .map(|&budget| {
+            let mut spent = 0.0;
+            let fit = full.gpu_ms.iter().take_while(|ms| {
+                spent += **ms;
+                spent <= budget
+            });
+            still((fit.count() as u32).max(1), Some(budget))
+        })
+        .collect()
 }
 
 fn to_rgb8(image: &HdrImage) -> Rgb8 {
