@@ -64,6 +64,11 @@ impl Renderer {
         //    the same paths for both solutions. `dir`: RSMs → VPLs → ISMs → interleaved
         //    shading → temporal smoothing and merge (Knecht §1.4, steps 5–9).
         self.method.record(rec, raster);
+        // 3b. probe ─▶ its nine SH coefficients (when virtual objects are shaded with them,
+        //     `[ibl] virtual`), every frame so that a changing probe is followed.
+        if let Some(probe_sh) = &self.probe_sh {
+            probe_sh.record(rec);
+        }
         // 4. G-buffer, shadow maps, probe, indirect light ─▶ `Differential { rv: L_rv, r: L_r }`.
         self.direct.record(rec);
         // 5. specular G-buffers, photons, L_rv, L_r, photo ─▶ caustic buffer, the light of

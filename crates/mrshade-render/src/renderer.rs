@@ -6,6 +6,7 @@ use crate::passes::composite::{CompositePass, CompositeTargets};
 use crate::passes::deform::DeformPass;
 use crate::passes::direct::{DirectPass, radiance_targets};
 use crate::passes::gbuffer::{GBuffer, GBufferPass};
+use crate::passes::probe_sh::ProbeShPass;
 use crate::passes::shadow::ShadowPass;
 use crate::passes::upload::{PackedPhoto, PhotoUpload};
 use crate::raster::Rasterizer;
@@ -15,6 +16,7 @@ use crate::uniforms::FrameUniforms;
 use anyhow::Result;
 use mrshade_core::Differential;
 use mrshade_core::camera::CameraView;
+use mrshade_core::settings::VirtualShading;
 use mrshade_gpu::{GpuContext, Target};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
@@ -39,6 +41,8 @@ pub struct Renderer {
     /// The light-transport method (the only place the frame holds it).
     pub(crate) method: Box<dyn LightTransport>,
     pub(crate) radiance: Differential<Target>,
+    /// The probe's SH coefficients (`None` unless `[ibl] virtual` reads them).
+    pub(crate) probe_sh: Option<ProbeShPass>,
     pub(crate) direct: DirectPass,
     /// Reflections and refractions (`None` when the scene has nothing it traces).
     pub(crate) specular: Option<SpecularStage>,
@@ -133,8 +137,19 @@ impl Renderer {
             internal_size: internal,
             light_photons: light_photons.as_ref(),
         });
-        let direct =
-            DirectPass::new(ctx, &frame, &settings.shadows, &gbuffer, &scene, &shadows, method.indirect(), &radiance);
+        let probe_sh = ProbeShPass::new(ctx, &scene.probe);
+        let direct = DirectPass::new(
+            ctx,
+            &frame,
+            &settings.shadows,
+            &gbuffer,
+            &scene,
+            &shadows,
+            method.indirect(),
+            &radiance,
+            (&settings.ibl, &probe_sh),
+        );
+        let probe_sh = (settings.ibl.virtual_shading != VirtualShading::Prefiltered).then_some(probe_sh);
         let specular_light = Target::new_2d(
             device,
             "specular/light",
@@ -185,6 +200,7 @@ impl Renderer {
             gbuffer_pass,
             method,
             radiance,
+            probe_sh,
             direct,
             specular,
             specular_light,

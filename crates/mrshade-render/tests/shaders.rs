@@ -42,6 +42,7 @@ const MODULES: &[(&str, &str)] = &[
     ("dvct/bounce", dvct::BOUNCE_SHADER),
     ("dvct/mips", dvct::MIPS_SHADER),
     ("dvct/cones", dvct::GATHER_SHADER),
+    ("probe_sh", mrshade_render::passes::probe_sh::SHADER),
     ("dlpv/inject", dlpv::INJECT_SHADER),
     ("dlpv/propagate", dlpv::PROPAGATE_SHADER),
     ("dlpv/merge", dlpv::GATHER_SHADER),
@@ -107,6 +108,11 @@ fn sh_constants_match() {
     for (name, value) in [("SH_Y0", Y0), ("SH_Y1", Y1)] {
         let text = source.split(&format!("const {name}: f32 = ")).nth(1).and_then(|s| s.split(';').next()).unwrap();
         assert!((text.parse::<f32>().unwrap() - value).abs() < 1e-6, "{name}");
+    }
+    // sh9's band-2 factors.
+    use mrshade_core::sh::{Y2, Y20, Y22};
+    for value in [Y2, Y20, Y22] {
+        assert!(source.contains(&format!("{value}")), "sh9 uses {value}");
     }
 }
 

@@ -9,6 +9,7 @@ mod composite;
 mod dir;
 mod dlpv;
 mod dvct;
+mod ibl;
 mod limits;
 mod reference;
 mod shadows;
@@ -19,6 +20,7 @@ pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
 pub use dlpv::DlpvSettings;
 pub use dvct::DvctSettings;
+pub use ibl::{IblSettings, VirtualShading};
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;
@@ -113,6 +115,8 @@ pub struct RenderSettings {
     pub dvct: DvctSettings,
     /// The `dlpv` method.
     pub dlpv: DlpvSettings,
+    /// The probe's light on virtual objects (every method).
+    pub ibl: IblSettings,
     /// Reflections and refractions (the specular stage, with every method).
     pub specular: SpecularSettings,
     /// Caustics of the punctual lights through the specular stage's objects.
@@ -139,6 +143,7 @@ impl RenderSettings {
         self.dir.validate()?;
         self.dvct.validate()?;
         self.dlpv.validate()?;
+        self.ibl.validate()?;
         self.specular.validate()?;
         self.caustics.validate()?;
         self.reference.validate()

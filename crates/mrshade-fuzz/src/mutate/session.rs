@@ -43,6 +43,8 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.propagation_steps", Kind::Number),
     ("dlpv.rsm_resolution", Kind::Number),
     ("dlpv.probe_lights", Kind::Number),
+    ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis"])),
+    ("ibl.samples", Kind::Number),
     ("dir.vpl_count", Kind::Number),
     ("dir.points_per_vpl", Kind::Number),
     ("dir.ism_resolution", Kind::Number),

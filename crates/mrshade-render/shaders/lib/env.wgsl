@@ -33,11 +33,15 @@ fn env_specular_albedo(s: Surface) -> vec3f {
     return surface_f0(s) * ab.x + surface_f90(s) * ab.y;
 }
 
-// The probe's diffuse light: what the specular lobe (of albedo `specular_albedo`) leaves
-// (glTF fresnel_mix, averaged over the lobe).
+// What the specular lobe (of albedo `specular_albedo`) leaves to the diffuse one (glTF
+// fresnel_mix, averaged over the lobe).
+fn env_diffuse_weight(s: Surface, specular_albedo: vec3f) -> vec3f {
+    return (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission);
+}
+
+// The probe's diffuse light.
 fn env_diffuse(frame: Frame, s: Surface, specular_albedo: vec3f) -> vec3f {
-    let diffuse_weight = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission);
-    return diffuse_weight * s.base_color / PI * env_irradiance_at(frame, s.normal);
+    return env_diffuse_weight(s, specular_albedo) * s.base_color / PI * env_irradiance_at(frame, s.normal);
 }
 
 // Unshadowed image-based light reflected (and refracted) toward the eye.

@@ -13,3 +13,25 @@ fn sh4(d: vec3f) -> vec4f {
 fn sh4_clamped_cosine(d: vec3f) -> vec4f {
     return vec4f(PI * SH_Y0, 2.0 * PI / 3.0 * SH_Y1 * vec3f(d.y, d.z, d.x));
 }
+
+// Bands 0–2, nine functions (mrshade_core::sh::basis9).
+fn sh9(d: vec3f) -> array<f32, 9> {
+    return array<f32, 9>(
+        SH_Y0,
+        SH_Y1 * d.y,
+        SH_Y1 * d.z,
+        SH_Y1 * d.x,
+        1.0925484 * d.x * d.y,
+        1.0925484 * d.y * d.z,
+        0.31539157 * (3.0 * d.z * d.z - 1.0),
+        1.0925484 * d.x * d.z,
+        0.5462742 * (d.x * d.x - d.y * d.y),
+    );
+}
+
+// Zonal coefficient Â_l of the clamped cosine for coefficient `i` (π, 2π/3, π/4 by band).
+fn sh9_clamped_cosine_band(i: u32) -> f32 {
+    if (i == 0u) { return PI; }
+    if (i < 4u) { return 2.0 * PI / 3.0; }
+    return PI / 4.0;
+}

@@ -35,6 +35,10 @@ pub struct PreparedProbe {
     pub radiance: Vec<HdrImage>,
     /// Irradiance `E(n)`, `IRRADIANCE_WIDTH × IRRADIANCE_WIDTH/2`.
     pub irradiance: HdrImage,
+    /// The probe box-filtered (solid-angle weighted), level 0 the probe at the radiance
+    /// chain's width, down to 2×1: what filtered importance sampling and the SH projection
+    /// read on the GPU.
+    pub pyramid: Vec<HdrImage>,
 }
 
 impl PreparedProbe {
@@ -45,6 +49,6 @@ impl PreparedProbe {
         let pyramid = EquirectPyramid::new(&base);
         let radiance = prefiltered_radiance(&pyramid, RADIANCE_LEVELS);
         let irradiance = irradiance_map(&pyramid, IRRADIANCE_WIDTH);
-        Self { radiance, irradiance }
+        Self { radiance, irradiance, pyramid: pyramid.levels }
     }
 }

@@ -7,5 +7,6 @@ pub mod deform;
 pub mod direct;
 pub mod encode;
 pub mod gbuffer;
+pub mod probe_sh;
 pub mod shadow;
 pub mod upload;

@@ -20,6 +20,10 @@ pub struct GpuProbe {
     pub sampler: wgpu::Sampler,
     /// Mips of `radiance`.
     pub radiance_mips: u32,
+    /// The probe box-filtered, one mip per halving (`PreparedProbe::pyramid`).
+    pub pyramid: Target,
+    /// Mips of `pyramid`.
+    pub pyramid_mips: u32,
 }
 
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -27,13 +31,17 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 impl GpuProbe {
     /// Prefilters and uploads `environment`; without one, black 1×1 textures.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, environment: Option<&Environment>) -> Self {
-        let (radiance_levels, irradiance) = match environment {
+        let (radiance_levels, irradiance, pyramid_levels) = match environment {
             Some(env) => {
                 let prepared = PreparedProbe::new(&env.image);
-                (prepared.radiance, prepared.irradiance)
+                (prepared.radiance, prepared.irradiance, prepared.pyramid)
             }
-            None => (vec![HdrImage::filled(2, 1, [0.0; 3])], HdrImage::filled(2, 1, [0.0; 3])),
+            None => {
+                let black = HdrImage::filled(2, 1, [0.0; 3]);
+                (vec![black.clone()], black.clone(), vec![black])
+            }
         };
+        let pyramid = upload(device, queue, "probe/pyramid", &pyramid_levels);
         let radiance = upload(device, queue, "probe/radiance", &radiance_levels);
         let irradiance = upload(device, queue, "probe/irradiance", std::slice::from_ref(&irradiance));
         let table = mrshade_core::brdf::dfg_table(DFG_SIZE, 256);
@@ -51,7 +59,7 @@ impl GpuProbe {
         });
         let radiance_mips = radiance_levels.len() as u32;
         debug_assert!(environment.is_none() || radiance_mips == RADIANCE_LEVELS);
-        Self { radiance, irradiance, dfg, sampler, radiance_mips }
+        Self { radiance, irradiance, dfg, sampler, radiance_mips, pyramid, pyramid_mips: pyramid_levels.len() as u32 }
     }
 
     /// Layout entries of the probe's lighting at bindings 0–3 of a group, as shaders/lib/env.wgsl

@@ -6,8 +6,8 @@ use super::output::OutputFile;
 use crate::sequence::{DEFAULT_FPS, DEFAULT_SAMPLES};
 use anyhow::{Context, Result};
 use mrshade_core::settings::{
-    CausticsSettings, CompositeSettings, DirSettings, DlpvSettings, DvctSettings, Limits, Method, ReferenceSettings,
-    ShadowSettings, SpecularSettings,
+    CausticsSettings, CompositeSettings, DirSettings, DlpvSettings, DvctSettings, IblSettings, Limits, Method,
+    ReferenceSettings, ShadowSettings, SpecularSettings,
 };
 use serde::Deserialize;
 
@@ -34,6 +34,8 @@ pub(super) struct SessionFile {
     pub(super) dvct: DvctSettings,
     #[serde(default)]
     pub(super) dlpv: DlpvSettings,
+    #[serde(default)]
+    pub(super) ibl: IblSettings,
     #[serde(default)]
     pub(super) specular: SpecularSettings,
     #[serde(default)]

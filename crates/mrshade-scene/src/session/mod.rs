@@ -249,6 +249,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         dir: file.dir,
         dvct: file.dvct,
         dlpv: file.dlpv,
+        ibl: file.ibl,
         specular: file.specular,
         caustics: file.caustics,
         reference: file.reference,

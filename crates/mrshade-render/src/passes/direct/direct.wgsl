@@ -82,10 +82,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     // Mirror-like and transmissive materials leave their specular reflection and refraction
     // of the probe to the specular stage, which traces them (reflections spec §2.4).
     var probe: vec3f;
+    let shading = select(IBL_PREFILTERED, ibl.x, r_p == 0.0);
     if (is_traced(m)) {
-        probe = env_diffuse(frame, s, env_specular_albedo(s)) * s.occlusion;
+        probe = probe_diffuse(s, env_specular_albedo(s), shading) * s.occlusion;
     } else {
-        probe = env_shading(frame, s, refracted_probe(s, m));
+        probe = probe_shading(s, refracted_probe(s, m), shading);
     }
     if (shadow_params.size.z == 1u) {
         // DIR: the probe's light shadowed by the environment VPLs' visibility ratios, plus the

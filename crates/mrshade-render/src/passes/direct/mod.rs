@@ -5,12 +5,13 @@
 
 use crate::methods::IndirectLight;
 use crate::passes::gbuffer::GBuffer;
+use crate::passes::probe_sh::ProbeShPass;
 use crate::passes::shadow::ShadowPass;
 use crate::scene_gpu::{GpuProbe, GpuScene};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
 use mrshade_core::Differential;
-use mrshade_core::settings::ShadowSettings;
+use mrshade_core::settings::{IblSettings, ShadowSettings, VirtualShading};
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
@@ -70,6 +71,7 @@ impl DirectPass {
         shadows: &ShadowPass,
         indirect: Option<&IndirectLight>,
         radiance: &Differential<Target>,
+        ibl: (&IblSettings, &ProbeShPass),
     ) -> Self {
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
@@ -115,7 +117,24 @@ impl DirectPass {
             "direct/lights_layout",
             &[bind::storage(0, cs), bind::storage(1, cs), bind::storage(2, cs), bind::storage(3, cs)],
         );
-        let probe_layout = bind::layout(device, "direct/probe_layout", &GpuProbe::layout_entries(cs));
+        let mut entries = GpuProbe::layout_entries(cs).to_vec();
+        entries.extend([
+            bind::storage(4, cs),
+            bind::texture(5, cs, wgpu::TextureSampleType::Float { filterable: true }, d2),
+            bind::uniform(6, cs),
+        ]);
+        let probe_layout = bind::layout(device, "direct/probe_layout", &entries);
+        let (ibl_settings, probe_sh) = ibl;
+        let shading = match ibl_settings.virtual_shading {
+            VirtualShading::Prefiltered => 0,
+            VirtualShading::Sh => 1,
+            VirtualShading::Fis => 2,
+        };
+        let ibl_uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("direct/ibl"),
+            contents: bytemuck::bytes_of(&UVec4::new(shading, ibl_settings.samples, 0, 0)),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
         let output_layout = bind::layout(
             device,
             "direct/output_layout",
@@ -155,7 +174,15 @@ impl DirectPass {
                     shadows.maps.as_entire_binding(),
                 ],
             ),
-            bind::group(device, "direct/probe_group", &probe_layout, &probe.resources()),
+            bind::group(device, "direct/probe_group", &probe_layout, &{
+                let mut r = probe.resources().to_vec();
+                r.extend([
+                    probe_sh.coefficients.as_entire_binding(),
+                    TextureView(&probe.pyramid.view),
+                    ibl_uniform.as_entire_binding(),
+                ]);
+                r
+            }),
             bind::group(
                 device,
                 "direct/output_group",
@@ -197,5 +224,8 @@ pub const SHADER: &str = wgsl!(
     "../../../shaders/lib/cube.wgsl",
     "../../../shaders/lib/shadow.wgsl",
     "../../../shaders/lib/punctual.wgsl",
+    "../../../shaders/lib/sampling.wgsl",
+    "../../../shaders/lib/sh.wgsl",
     "direct.wgsl",
+    "ibl.wgsl",
 );

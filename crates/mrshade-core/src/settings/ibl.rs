@@ -1,0 +1,75 @@
+//! How virtual objects are shaded by the real probe (Franke §2.1–§2.2): the image-based
+//! light that every method's direct pass gives them.
+
+use super::check;
+use serde::{Deserialize, Serialize};
+
+/// The probe's light on virtual surfaces.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum VirtualShading {
+    /// Irradiance map and GGX-prefiltered radiance chain, prepared once on the CPU (split
+    /// sum, Karis 2013); the default.
+    #[default]
+    #[serde(rename = "prefiltered")]
+    Prefiltered,
+    /// Diffuse light from the probe's nine SH irradiance coefficients (spec §2.1),
+    /// recomputed on the GPU every frame; specular as `prefiltered`.
+    #[serde(rename = "sh")]
+    Sh,
+    /// SH diffuse light and GGX filtered importance sampling of the probe per pixel
+    /// (Křivánek & Colbert 2008, spec §2.2): any roughness, no prefiltered chain.
+    #[serde(rename = "fis")]
+    Fis,
+}
+
+impl VirtualShading {
+    /// The name used in sessions.
+    pub fn name(self) -> &'static str {
+        match self {
+            VirtualShading::Prefiltered => "prefiltered",
+            VirtualShading::Sh => "sh",
+            VirtualShading::Fis => "fis",
+        }
+    }
+}
+
+/// Settings of image-based light on virtual objects.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct IblSettings {
+    /// How virtual surfaces take the probe's light. Default `prefiltered`.
+    #[serde(rename = "virtual")]
+    pub virtual_shading: VirtualShading,
+    /// GGX samples per pixel of filtered importance sampling (1–256). Default 32 (the
+    /// thesis's code samples 16–64).
+    pub samples: u32,
+}
+
+impl Default for IblSettings {
+    fn default() -> Self {
+        Self { virtual_shading: VirtualShading::Prefiltered, samples: 32 }
+    }
+}
+
+impl IblSettings {
+    /// Checks every value; the error names the offending field.
+    pub fn validate(&self) -> Result<(), String> {
+        check(
+            (1..=256).contains(&self.samples),
+            "ibl.samples",
+            format!("must be between 1 and 256, got {}", self.samples),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_values_are_named() {
+        let bad = IblSettings { samples: 0, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("ibl.samples"));
+        IblSettings::default().validate().unwrap();
+    }
+}

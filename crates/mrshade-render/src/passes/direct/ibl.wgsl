@@ -1,0 +1,74 @@
+// The probe's light on a surface by `[ibl] virtual` (Franke §2.1–§2.2), for virtual surfaces;
+// real ones always take the prefiltered maps (their light is the photo's; only L_r's model).
+// - prefiltered: irradiance map and GGX-prefiltered chain (env.wgsl);
+// - sh: irradiance from the nine SH coefficients the probe_sh pass projects every frame
+//   (E(n) = Σ Â_l c_lm y_lm(n)), specular as prefiltered;
+// - fis: SH irradiance and, per pixel, GGX filtered importance sampling of the probe's
+//   box-filtered pyramid (Křivánek & Colbert 2008): `samples` half vectors from the GGX
+//   distribution (Hammersley), each read at the mip whose texel spans its sample's solid
+//   angle, lod = ½·log2(Ω_s/Ω_p) + 1, Ω_s = 1/(N·pdf), Ω_p = 4π/(w·h); weighted by n·l.
+
+@group(2) @binding(4) var<storage, read> probe_sh: array<vec4f, 9>;
+@group(2) @binding(5) var env_pyramid: texture_2d<f32>;
+// shading (IBL_*), samples, unused, unused
+@group(2) @binding(6) var<uniform> ibl: vec4u;
+
+const IBL_PREFILTERED: u32 = 0u;
+const IBL_SH: u32 = 1u;
+const IBL_FIS: u32 = 2u;
+
+fn probe_irradiance(n: vec3f, mode: u32) -> vec3f {
+    if (mode == IBL_PREFILTERED) { return env_irradiance_at(frame, n); }
+    if (frame.counts.y == 0u) { return vec3f(0.0); }
+    let b = sh9(probe_dir(frame, n));
+    var e = vec3f(0.0);
+    for (var k = 0u; k < 9u; k++) {
+        e += probe_sh[k].rgb * (sh9_clamped_cosine_band(k) * b[k]);
+    }
+    return max(e, vec3f(0.0)) * frame.exposure_env.y;
+}
+
+fn fis_radiance(s: Surface) -> vec3f {
+    let n = s.normal;
+    let v = s.view;
+    let alpha = max(s.roughness * s.roughness, 1e-4);
+    let size = vec2f(textureDimensions(env_pyramid, 0));
+    let texel_solid_angle = 4.0 * PI / (size.x * size.y);
+    let count = max(ibl.y, 1u);
+    let t = tangent_frame(n);
+    var sum = vec3f(0.0);
+    var weight = 0.0;
+    for (var i = 0u; i < count; i++) {
+        let u = vec2f((f32(i) + 0.5) / f32(count), halton2(i));
+        let phi = 2.0 * PI * u.y;
+        let cos_h = sqrt((1.0 - u.x) / (1.0 + (alpha * alpha - 1.0) * u.x));
+        let sin_h = sqrt(max(1.0 - cos_h * cos_h, 0.0));
+        let h = normalize(t[0] * (cos(phi) * sin_h) + t[1] * (sin(phi) * sin_h) + n * cos_h);
+        let l = reflect(-v, h);
+        let n_dot_l = dot(n, l);
+        if (n_dot_l <= 0.0) { continue; }
+        let pdf = d_ggx(cos_h, alpha) * cos_h / (4.0 * max(dot(v, h), 1e-4));
+        let lod = max(0.5 * log2(1.0 / (f32(count) * pdf) / texel_solid_angle) + 1.0, 0.0);
+        let uv = equirect_uv(probe_dir(frame, l));
+        sum += textureSampleLevel(env_pyramid, env_sampler, uv, lod).rgb * n_dot_l;
+        weight += n_dot_l;
+    }
+    if (weight <= 0.0) { return env_radiance_at(frame, reflect(-v, n), s.roughness); }
+    return sum / weight * frame.exposure_env.y;
+}
+
+fn probe_diffuse(s: Surface, specular_albedo: vec3f, mode: u32) -> vec3f {
+    return env_diffuse_weight(s, specular_albedo) * s.base_color / PI * probe_irradiance(s.normal, mode);
+}
+
+// Image-based light reflected (and refracted) toward the eye: env_shading by `mode`.
+fn probe_shading(s: Surface, refraction: vec3f, mode: u32) -> vec3f {
+    let specular_albedo = env_specular_albedo(s);
+    var specular: vec3f;
+    if (mode == IBL_FIS && frame.counts.y != 0u) {
+        specular = fis_radiance(s);
+    } else {
+        specular = env_radiance_at(frame, reflect(-s.view, s.normal), s.roughness);
+    }
+    return (probe_diffuse(s, specular_albedo, mode) + specular_albedo * specular) * s.occlusion + refraction;
+}
