@@ -69,6 +69,11 @@ impl Renderer {
         if let Some(probe_sh) = &self.probe_sh {
             probe_sh.record(rec);
         }
+        // 3c. visibility, geometry, baked transfer, SH coefficients ─▶ PRT irradiance of
+        //     rigid virtual objects (`[ibl] virtual = "prt"`).
+        if let Some(prt) = &self.prt {
+            prt.record(rec);
+        }
         // 4. G-buffer, shadow maps, probe, indirect light ─▶ `Differential { rv: L_rv, r: L_r }`.
         self.direct.record(rec);
         // 5. specular G-buffers, photons, L_rv, L_r, photo ─▶ caustic buffer, the light of

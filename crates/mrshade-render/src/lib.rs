@@ -14,6 +14,7 @@ pub mod limits;
 pub mod methods;
 pub mod outputs;
 pub mod passes;
+pub mod prt;
 pub mod raster;
 pub mod scene_gpu;
 pub mod specular;

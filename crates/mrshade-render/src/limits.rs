@@ -346,6 +346,7 @@ mod tests {
             warnings: Vec::new(),
             sequence: None,
             inserts: Vec::new(),
+            folder: None,
         }
     }
 

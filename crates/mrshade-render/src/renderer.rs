@@ -43,6 +43,8 @@ pub struct Renderer {
     pub(crate) radiance: Differential<Target>,
     /// The probe's SH coefficients (`None` unless `[ibl] virtual` reads them).
     pub(crate) probe_sh: Option<ProbeShPass>,
+    /// PRT irradiance of rigid virtual objects (`[ibl] virtual = "prt"`).
+    pub(crate) prt: Option<crate::prt::PrtPass>,
     pub(crate) direct: DirectPass,
     /// Reflections and refractions (`None` when the scene has nothing it traces).
     pub(crate) specular: Option<SpecularStage>,
@@ -71,7 +73,7 @@ impl Renderer {
             &fitted
         };
         let mut renderer = ctx.checked("creating the renderer", || Ok(Self::build(ctx, session)))?;
-        renderer.warnings = warnings;
+        renderer.warnings.extend(warnings);
         Ok(renderer)
     }
 
@@ -137,7 +139,15 @@ impl Renderer {
             internal_size: internal,
             light_photons: light_photons.as_ref(),
         });
-        let probe_sh = ProbeShPass::new(ctx, &scene.probe);
+        let shading = settings.ibl.virtual_shading;
+        let transfer = (shading == VirtualShading::Prt)
+            .then(|| crate::prt::Transfer::of(session, &scene.geometry, settings.ibl.prt_samples));
+        let prt_instances = transfer.as_ref().map_or(&[][..], |t| &t.instances[..]);
+        let probe_sh = ProbeShPass::new(ctx, &scene.probe, &frame, &scene.geometry.instances, prt_instances);
+        let prt = transfer.as_ref().map(|t| {
+            let visibility = &gbuffer_pass.camera.target;
+            crate::prt::PrtPass::new(ctx, &frame, visibility, &scene.geometry, t, &probe_sh, internal)
+        });
         let direct = DirectPass::new(
             ctx,
             &frame,
@@ -147,9 +157,9 @@ impl Renderer {
             &shadows,
             method.indirect(),
             &radiance,
-            (&settings.ibl, &probe_sh),
+            (&settings.ibl, &probe_sh, prt.as_ref().map(|p| &p.irradiance)),
         );
-        let probe_sh = (settings.ibl.virtual_shading != VirtualShading::Prefiltered).then_some(probe_sh);
+        let probe_sh = (shading != VirtualShading::Prefiltered).then_some(probe_sh);
         let specular_light = Target::new_2d(
             device,
             "specular/light",
@@ -201,13 +211,14 @@ impl Renderer {
             method,
             radiance,
             probe_sh,
+            prt,
             direct,
             specular,
             specular_light,
             photo,
             composite_targets,
             composite,
-            warnings: Vec::new(),
+            warnings: transfer.map(|t| t.warnings).unwrap_or_default(),
             serial_passes: false,
         }
     }

@@ -37,7 +37,19 @@ fn gpu_coefficients(image: &HdrImage) -> Sh9 {
     let ctx = mrshade_testkit::gpu();
     let env = Environment { image: image.clone(), rotation_deg: 0.0, intensity: 1.0 };
     let probe = GpuProbe::new(&ctx.device, &ctx.queue, Some(&env));
-    let pass = ProbeShPass::new(&ctx, &probe);
+    let frame = ctx.device.create_buffer(&mrshade_gpu::wgpu::BufferDescriptor {
+        label: Some("test/frame"),
+        size: std::mem::size_of::<mrshade_render::uniforms::FrameUniforms>() as u64,
+        usage: mrshade_gpu::wgpu::BufferUsages::UNIFORM,
+        mapped_at_creation: false,
+    });
+    let instances = ctx.device.create_buffer(&mrshade_gpu::wgpu::BufferDescriptor {
+        label: Some("test/instances"),
+        size: 256,
+        usage: mrshade_gpu::wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    });
+    let pass = ProbeShPass::new(&ctx, &probe, &frame, &instances, &[]);
     let mut profiler = profiler(&ctx, false).unwrap();
     let mut rec = Recorder::new(&ctx, &mut profiler, "test/probe_sh");
     pass.record(&mut rec);
@@ -82,8 +94,13 @@ mod common;
 
 #[test]
 fn every_shading_mode_lights_the_demo_alike() {
-    use mrshade_scene::{AssetSource, Session, SessionOverrides};
-    let demo = AssetSource::dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo"));
+    use mrshade_scene::{Session, SessionOverrides};
+    // A copy: PRT caches its bake beside the session.
+    let copy = tempfile::tempdir().unwrap();
+    for entry in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/demo")).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, copy.path().join(path.file_name().unwrap())).unwrap();
+    }
     let render = |mode: &str| {
         let overrides = SessionOverrides {
             width: Some(96),
@@ -91,15 +108,48 @@ fn every_shading_mode_lights_the_demo_alike() {
             set: vec![format!("ibl.virtual=\"{mode}\"")],
             ..Default::default()
         };
-        let session = Session::load_from(&demo, "session.toml", &overrides).unwrap();
+        let session = Session::load(&copy.path().join("session.toml"), &overrides).unwrap();
         let r = common::Rendered::new(session);
         let c = r.renderer.read_composite(&r.ctx).unwrap();
         (c.image.to_srgb8(), c.image.width, c.image.height)
     };
     let (prefiltered, w, h) = render("prefiltered");
-    for mode in ["sh", "fis"] {
+    for mode in ["sh", "fis", "prt"] {
         let (image, _, _) = render(mode);
         let flip = mrshade_testkit::flip::mean(&prefiltered, &image, w, h);
         assert!(flip > 0.0 && flip < 0.02, "{mode}: FLIP {flip} against prefiltered");
     }
+}
+
+#[test]
+fn prt_of_an_unoccluded_convex_object_is_plain_sh_irradiance() {
+    // A virtual sphere under a probe brighter toward +x, seen from above: no self-shadowing,
+    // so PRT's Σ c_i T_i is the SH irradiance (up to the bake's 256 rays and per-vertex
+    // interpolation). Its transfer is baked into prt_cache.bin beside the session.
+    let sphere_of = |mode: &str| {
+        let mut s = common::Setup::top_down(64);
+        s.probe = Some([0.4, 0.45, 0.5]);
+        s.probe_plus_x = Some([1.2, 1.0, 0.8]);
+        s.extra_toml += &format!("[ibl]\nvirtual = \"{mode}\"\n");
+        let m = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
+        let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.2, 32), Some(m), true);
+        s.gltf.node(serde_json::json!({"name": "ball", "mesh": mesh, "extras": {"real": false}}));
+        let (dir, session) = s.session();
+        (common::Rendered::new(session), dir)
+    };
+    let (sh, _) = sphere_of("sh");
+    let (prt, dir) = sphere_of("prt");
+    assert!(dir.path().join(mrshade_render::prt::cache::FILE_NAME).is_file(), "the bake is cached");
+    let mut compared = 0;
+    for y in 20..44 {
+        for x in 20..44 {
+            let (a, b) = (sh.l_rv(x, y), prt.l_rv(x, y));
+            if (x as f32 - 31.5).hypot(y as f32 - 31.5) > 9.0 {
+                continue;
+            }
+            assert!((a - b).abs().max_element() < 0.03 * a.max_element(), "({x}, {y}): SH {a} PRT {b}");
+            compared += 1;
+        }
+    }
+    assert!(compared > 200, "{compared} pixels on the sphere");
 }

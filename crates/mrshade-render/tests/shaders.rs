@@ -43,6 +43,7 @@ const MODULES: &[(&str, &str)] = &[
     ("dvct/mips", dvct::MIPS_SHADER),
     ("dvct/cones", dvct::GATHER_SHADER),
     ("probe_sh", mrshade_render::passes::probe_sh::SHADER),
+    ("prt", mrshade_render::prt::SHADER),
     ("dlpv/inject", dlpv::INJECT_SHADER),
     ("dlpv/propagate", dlpv::PROPAGATE_SHADER),
     ("dlpv/merge", dlpv::GATHER_SHADER),

@@ -102,6 +102,14 @@ impl AssetSource {
         }
     }
 
+    /// The folder on disk that relative paths start from (`None` for embedded files).
+    pub fn folder(&self) -> Option<PathBuf> {
+        match self {
+            AssetSource::Dir { folder, .. } => Some(folder.clone()),
+            AssetSource::Embedded { .. } => None,
+        }
+    }
+
     /// How to show `rel` to a user.
     pub fn display(&self, rel: &str) -> String {
         match self {

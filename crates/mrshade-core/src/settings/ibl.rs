@@ -20,6 +20,11 @@ pub enum VirtualShading {
     /// (Křivánek & Colbert 2008, spec §2.2): any roughness, no prefiltered chain.
     #[serde(rename = "fis")]
     Fis,
+    /// Precomputed radiance transfer (spec §2.4): rigid virtual objects take diffuse light
+    /// with self-shadowing from transfer vectors baked per vertex on first use (cached next
+    /// to the session as prt_cache.bin), deforming ones SH irradiance; specular as `fis`.
+    #[serde(rename = "prt")]
+    Prt,
 }
 
 impl VirtualShading {
@@ -29,6 +34,7 @@ impl VirtualShading {
             VirtualShading::Prefiltered => "prefiltered",
             VirtualShading::Sh => "sh",
             VirtualShading::Fis => "fis",
+            VirtualShading::Prt => "prt",
         }
     }
 }
@@ -43,11 +49,13 @@ pub struct IblSettings {
     /// GGX samples per pixel of filtered importance sampling (1–256). Default 32 (the
     /// thesis's code samples 16–64).
     pub samples: u32,
+    /// Rays per vertex when baking PRT transfer (16–65536). Default 256.
+    pub prt_samples: u32,
 }
 
 impl Default for IblSettings {
     fn default() -> Self {
-        Self { virtual_shading: VirtualShading::Prefiltered, samples: 32 }
+        Self { virtual_shading: VirtualShading::Prefiltered, samples: 32, prt_samples: 256 }
     }
 }
 

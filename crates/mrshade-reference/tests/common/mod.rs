@@ -124,6 +124,7 @@ impl Builder {
             warnings: Vec::new(),
             sequence: None,
             inserts: Vec::new(),
+            folder: None,
         }
     }
 }

@@ -134,6 +134,9 @@ pub struct Session {
     pub sequence: Option<Sequence>,
     /// The models of `[[insert]]`, in order.
     pub inserts: Vec<Insert>,
+    /// The folder of a session on disk, where what is computed from its files is cached
+    /// (baked PRT); `None` for a built-in one.
+    pub folder: Option<std::path::PathBuf>,
 }
 
 impl Session {
@@ -156,7 +159,9 @@ impl Session {
     /// Loads the session file `rel` of `source`.
     pub fn load_from(source: &AssetSource, rel: &str, overrides: &SessionOverrides) -> Result<Session> {
         let origin = source.display(rel);
-        load(source, rel, overrides, origin.clone()).with_context(|| format!("session {origin}"))
+        let mut session = load(source, rel, overrides, origin.clone()).with_context(|| format!("session {origin}"))?;
+        session.folder = source.folder();
+        Ok(session)
     }
 
     /// The node of the insert named `name`.
@@ -399,6 +404,7 @@ fn load(source: &AssetSource, rel: &str, overrides: &SessionOverrides, origin: S
         warnings,
         sequence,
         inserts,
+        folder: None,
     })
 }
 

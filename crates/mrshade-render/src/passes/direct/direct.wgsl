@@ -84,9 +84,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     var probe: vec3f;
     let shading = select(IBL_PREFILTERED, ibl.x, r_p == 0.0);
     if (is_traced(m)) {
-        probe = probe_diffuse(s, env_specular_albedo(s), shading) * s.occlusion;
+        probe = probe_diffuse(s, env_specular_albedo(s), shading, pixel) * s.occlusion;
     } else {
-        probe = probe_shading(s, refracted_probe(s, m), shading);
+        probe = probe_shading(s, refracted_probe(s, m), shading, pixel);
     }
     if (shadow_params.size.z == 1u) {
         // DIR: the probe's light shadowed by the environment VPLs' visibility ratios, plus the

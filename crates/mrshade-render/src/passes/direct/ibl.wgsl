@@ -3,6 +3,8 @@
 // - prefiltered: irradiance map and GGX-prefiltered chain (env.wgsl);
 // - sh: irradiance from the nine SH coefficients the probe_sh pass projects every frame
 //   (E(n) = Σ Â_l c_lm y_lm(n)), specular as prefiltered;
+// - prt: the prt pass's irradiance with self-shadowing where it applies (rigid objects),
+//   else SH; specular as fis;
 // - fis: SH irradiance and, per pixel, GGX filtered importance sampling of the probe's
 //   box-filtered pyramid (Křivánek & Colbert 2008): `samples` half vectors from the GGX
 //   distribution (Hammersley), each read at the mip whose texel spans its sample's solid
@@ -12,13 +14,20 @@
 @group(2) @binding(5) var env_pyramid: texture_2d<f32>;
 // shading (IBL_*), samples, unused, unused
 @group(2) @binding(6) var<uniform> ibl: vec4u;
+// PRT irradiance (a = 1 where it applies).
+@group(2) @binding(7) var prt_irradiance: texture_2d<f32>;
 
 const IBL_PREFILTERED: u32 = 0u;
 const IBL_SH: u32 = 1u;
 const IBL_FIS: u32 = 2u;
+const IBL_PRT: u32 = 3u;
 
-fn probe_irradiance(n: vec3f, mode: u32) -> vec3f {
+fn probe_irradiance(n: vec3f, mode: u32, pixel: vec2i) -> vec3f {
     if (mode == IBL_PREFILTERED) { return env_irradiance_at(frame, n); }
+    if (mode == IBL_PRT) {
+        let prt = textureLoad(prt_irradiance, pixel, 0);
+        if (prt.a > 0.5) { return prt.rgb; }
+    }
     if (frame.counts.y == 0u) { return vec3f(0.0); }
     let b = sh9(probe_dir(frame, n));
     var e = vec3f(0.0);
@@ -57,18 +66,18 @@ fn fis_radiance(s: Surface) -> vec3f {
     return sum / weight * frame.exposure_env.y;
 }
 
-fn probe_diffuse(s: Surface, specular_albedo: vec3f, mode: u32) -> vec3f {
-    return env_diffuse_weight(s, specular_albedo) * s.base_color / PI * probe_irradiance(s.normal, mode);
+fn probe_diffuse(s: Surface, specular_albedo: vec3f, mode: u32, pixel: vec2i) -> vec3f {
+    return env_diffuse_weight(s, specular_albedo) * s.base_color / PI * probe_irradiance(s.normal, mode, pixel);
 }
 
 // Image-based light reflected (and refracted) toward the eye: env_shading by `mode`.
-fn probe_shading(s: Surface, refraction: vec3f, mode: u32) -> vec3f {
+fn probe_shading(s: Surface, refraction: vec3f, mode: u32, pixel: vec2i) -> vec3f {
     let specular_albedo = env_specular_albedo(s);
     var specular: vec3f;
-    if (mode == IBL_FIS && frame.counts.y != 0u) {
+    if ((mode == IBL_FIS || mode == IBL_PRT) && frame.counts.y != 0u) {
         specular = fis_radiance(s);
     } else {
         specular = env_radiance_at(frame, reflect(-s.view, s.normal), s.roughness);
     }
-    return (probe_diffuse(s, specular_albedo, mode) + specular_albedo * specular) * s.occlusion + refraction;
+    return (probe_diffuse(s, specular_albedo, mode, pixel) + specular_albedo * specular) * s.occlusion + refraction;
 }

@@ -71,7 +71,7 @@ impl DirectPass {
         shadows: &ShadowPass,
         indirect: Option<&IndirectLight>,
         radiance: &Differential<Target>,
-        ibl: (&IblSettings, &ProbeShPass),
+        ibl: (&IblSettings, &ProbeShPass, Option<&Target>),
     ) -> Self {
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
@@ -122,13 +122,25 @@ impl DirectPass {
             bind::storage(4, cs),
             bind::texture(5, cs, wgpu::TextureSampleType::Float { filterable: true }, d2),
             bind::uniform(6, cs),
+            bind::texture(7, cs, unfilterable, d2),
         ]);
         let probe_layout = bind::layout(device, "direct/probe_layout", &entries);
-        let (ibl_settings, probe_sh) = ibl;
+        let (ibl_settings, probe_sh, prt) = ibl;
         let shading = match ibl_settings.virtual_shading {
             VirtualShading::Prefiltered => 0,
             VirtualShading::Sh => 1,
             VirtualShading::Fis => 2,
+            VirtualShading::Prt => 3,
+        };
+        // Without PRT the binding still needs a texture; it is never read.
+        let no_prt;
+        let prt = match prt {
+            Some(t) => t,
+            None => {
+                let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+                no_prt = Target::new_2d(device, "direct/no_prt", (1, 1), wgpu::TextureFormat::Rgba16Float, usage);
+                &no_prt
+            }
         };
         let ibl_uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("direct/ibl"),
@@ -180,6 +192,7 @@ impl DirectPass {
                     probe_sh.coefficients.as_entire_binding(),
                     TextureView(&probe.pyramid.view),
                     ibl_uniform.as_entire_binding(),
+                    TextureView(&prt.view),
                 ]);
                 r
             }),

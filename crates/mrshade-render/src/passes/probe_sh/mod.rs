@@ -1,6 +1,8 @@
-//! The probe's nine SH coefficients on the GPU, every frame (Franke §2.1): what the `sh` and
-//! `fis` shading of virtual objects (`[ibl] virtual`) reads for their diffuse light.
-//! Inputs: the probe's box-filtered pyramid. Output: `coefficients` (nine RGB, probe frame).
+//! The probe's nine SH coefficients on the GPU, every frame (Franke §2.1): what the `sh`,
+//! `fis` and `prt` shading of virtual objects (`[ibl] virtual`) reads for their diffuse
+//! light. Inputs: the probe's box-filtered pyramid, the frame (probe rotation), the
+//! instances (their rotation). Output: `coefficients`, nine RGB in the probe's frame, then
+//! nine per PRT instance in its object frame.
 
 use crate::scene_gpu::GpuProbe;
 use glam::UVec4;
@@ -15,16 +17,25 @@ const SOURCE_WIDTH: u32 = 128;
 pub struct ProbeShPass {
     pipeline: wgpu::ComputePipeline,
     group: wgpu::BindGroup,
-    /// Nine `vec4f` (rgb: radiance coefficient `c_i` of the unrotated, unscaled probe).
+    /// Nine `vec4f` per frame (rgb: radiance coefficient `c_i` of the unscaled probe), the
+    /// probe's own first, then each of `prt_instances`' object frames.
     pub coefficients: wgpu::Buffer,
+    frames: u32,
 }
 
 impl ProbeShPass {
     /// GPU timing label.
     pub const LABEL: &'static str = "probe-sh";
 
-    /// Binds `probe`'s pyramid.
-    pub fn new(ctx: &GpuContext, probe: &GpuProbe) -> Self {
+    /// Binds `probe`'s pyramid; also projects it into the object frames of `prt_instances`
+    /// (indices into `instances`, the scene's `GpuInstance`s).
+    pub fn new(
+        ctx: &GpuContext,
+        probe: &GpuProbe,
+        frame: &wgpu::Buffer,
+        instances: &wgpu::Buffer,
+        prt_instances: &[u32],
+    ) -> Self {
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
         let size = probe.pyramid.size();
@@ -35,9 +46,17 @@ impl ProbeShPass {
             contents: bytemuck::bytes_of(&source),
             usage: wgpu::BufferUsages::UNIFORM,
         });
+        let frames = 1 + prt_instances.len() as u32;
+        let mut list = prt_instances.to_vec();
+        list.push(0);
+        let prt_instances = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("probe_sh/prt_instances"),
+            contents: bytemuck::cast_slice(&list),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
         let coefficients = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("probe_sh/coefficients"),
-            size: 9 * 16,
+            size: frames as u64 * 9 * 16,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
@@ -53,6 +72,9 @@ impl ProbeShPass {
                 ),
                 bind::storage_rw(1, cs),
                 bind::uniform(2, cs),
+                bind::uniform(3, cs),
+                bind::storage(4, cs),
+                bind::storage(5, cs),
             ],
         );
         let group = bind::group(
@@ -63,10 +85,13 @@ impl ProbeShPass {
                 wgpu::BindingResource::TextureView(&probe.pyramid.view),
                 coefficients.as_entire_binding(),
                 source.as_entire_binding(),
+                frame.as_entire_binding(),
+                instances.as_entire_binding(),
+                prt_instances.as_entire_binding(),
             ],
         );
         let pipeline = mrshade_gpu::shader::compute_pipeline(device, "probe_sh", SHADER, &[&layout]);
-        Self { pipeline, group, coefficients }
+        Self { pipeline, group, coefficients, frames }
     }
 
     /// Projects the probe.
@@ -74,10 +99,15 @@ impl ProbeShPass {
         rec.compute(Self::LABEL, |pass| {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.group, &[]);
-            pass.dispatch_workgroups(1, 1, 1);
+            pass.dispatch_workgroups(self.frames, 1, 1);
         });
     }
 }
 
 /// The projection module.
-pub const SHADER: &str = wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/sh.wgsl", "probe_sh.wgsl");
+pub const SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "../../../shaders/lib/sh.wgsl",
+    "probe_sh.wgsl"
+);

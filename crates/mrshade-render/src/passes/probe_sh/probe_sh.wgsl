@@ -1,13 +1,20 @@
 // The probe's SH radiance coefficients c_i = Σ L(t)·y_i(ω_t)·dω_t over every texel of a
-// coarse level of its box-filtered pyramid (Franke §2.1, Eq. 4.8, by summation), in the
-// probe's own frame and unscaled (rotation and intensity apply at lookup). One workgroup:
-// each invocation sums a stride of texels, then a tree reduction per coefficient. Run every
-// frame, so a probe that changes on the GPU is followed.
+// coarse level of its box-filtered pyramid (Franke §2.1, Eq. 4.8, by summation), unscaled
+// (intensity applies at lookup). Workgroup 0 projects in the probe's own frame (rotation
+// applies at lookup); workgroup k > 0 in the object frame of the k-th instance with baked
+// transfer (PRT, spec §2.4: "SH light vector with rotation into object space"). Each
+// invocation sums a stride of texels, then a tree reduction per coefficient. Run every
+// frame, so a probe that changes on the GPU and objects that turn are followed.
 
 @group(0) @binding(0) var pyramid: texture_2d<f32>;
-@group(0) @binding(1) var<storage, read_write> coefficients: array<vec4f, 9>;
+// Nine per workgroup.
+@group(0) @binding(1) var<storage, read_write> coefficients: array<vec4f>;
 // level, width, height, unused
 @group(0) @binding(2) var<uniform> source: vec4u;
+@group(0) @binding(3) var<uniform> frame: Frame;
+@group(0) @binding(4) var<storage, read> instances: array<Instance>;
+// The instance of workgroup k + 1.
+@group(0) @binding(5) var<storage, read> prt_instances: array<u32>;
 
 const THREADS: u32 = 256u;
 
@@ -19,17 +26,28 @@ fn dir_from_equirect(uv: vec2f) -> vec3f {
     return vec3f(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
 }
 
+// Object-frame direction of a probe-frame one for workgroup `k` (identity for k = 0).
+fn frame_dir(k: u32, d: vec3f) -> vec3f {
+    if (k == 0u) { return d; }
+    let world = transpose(mat3x3f(frame.probe_from_world[0].xyz, frame.probe_from_world[1].xyz, frame.probe_from_world[2].xyz)) * d;
+    let n = instances[prt_instances[k - 1u]].normal_from_object;
+    // normal_from_object is the inverse transpose: its transpose takes world directions to
+    // object space.
+    return normalize(transpose(mat3x3f(n[0].xyz, n[1].xyz, n[2].xyz)) * world);
+}
+
 @compute @workgroup_size(256)
-fn cs_main(@builtin(local_invocation_index) t: u32) {
+fn cs_main(@builtin(local_invocation_index) t: u32, @builtin(workgroup_id) group: vec3u) {
     let w = source.y;
     let h = source.z;
+
     var c: array<vec3f, 9>;
     for (var i = t; i < w * h; i += THREADS) {
         let x = i % w;
         let y = i / w;
         let l = textureLoad(pyramid, vec2i(i32(x), i32(y)), i32(source.x)).rgb;
         let d_omega = 2.0 * PI / f32(w) * (cos(PI * f32(y) / f32(h)) - cos(PI * f32(y + 1u) / f32(h)));
-        let b = sh9(dir_from_equirect((vec2f(f32(x), f32(y)) + 0.5) / vec2f(f32(w), f32(h))));
+        let b = sh9(frame_dir(group.x, dir_from_equirect((vec2f(f32(x), f32(y)) + 0.5) / vec2f(f32(w), f32(h)))));
         for (var k = 0u; k < 9u; k++) {
             c[k] += l * (b[k] * d_omega);
         }
@@ -44,7 +62,7 @@ fn cs_main(@builtin(local_invocation_index) t: u32) {
             workgroupBarrier();
         }
         if (t == 0u) {
-            coefficients[k] = partial[0];
+            coefficients[group.x * 9u + k] = partial[0];
         }
         workgroupBarrier();
     }
