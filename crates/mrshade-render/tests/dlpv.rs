@@ -13,8 +13,8 @@ const CELLS: u32 = RES * RES * RES;
 const SCALE: f32 = 1_048_576.0;
 
 /// Seeds cell `at` with the red-channel coefficients `c` (source 1, the indirect change),
-/// runs one propagation step, and returns (after seeding, after the step, accumulated), red
-/// channel per cell.
+/// runs one propagation step, and returns (after seeding, after the step, the sum the step
+/// writes), red channel per cell.
 fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
     let ctx = mrshade_testkit::gpu();
     let device = &ctx.device;
@@ -35,7 +35,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
     let params = init("test/params", bytemuck::bytes_of(&params), wgpu::BufferUsages::UNIFORM);
     let injected = init("test/injected", cast_slice(&injected), storage);
     let zeros = vec![0u8; (CELLS * 48) as usize];
-    let [a, b, acc] = ["test/a", "test/b", "test/acc"].map(|l| init(l, &zeros, storage));
+    let [a, b, sum_in, acc] = ["test/a", "test/b", "test/sum_in", "test/acc"].map(|l| init(l, &zeros, storage));
     let cs = wgpu::ShaderStages::COMPUTE;
     let layout = bind::layout(
         device,
@@ -45,7 +45,8 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
             bind::storage(1, cs),
             bind::storage(2, cs),
             bind::storage_rw(3, cs),
-            bind::storage_rw(4, cs),
+            bind::storage(4, cs),
+            bind::storage_rw(5, cs),
         ],
     );
     let pipeline =
@@ -60,6 +61,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
                 injected.as_entire_binding(),
                 from.as_entire_binding(),
                 to.as_entire_binding(),
+                sum_in.as_entire_binding(),
                 acc.as_entire_binding(),
             ],
         )

@@ -43,6 +43,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.propagation_steps", Kind::Number),
     ("dlpv.rsm_resolution", Kind::Number),
     ("dlpv.probe_lights", Kind::Number),
+    ("dlpv.probe_rsm_resolution", Kind::Number),
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),

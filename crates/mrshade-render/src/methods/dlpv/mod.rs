@@ -162,9 +162,10 @@ pub struct DlpvMethod {
     inject: wgpu::ComputePipeline,
     seed: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
-    /// Per source: seed group (into scratch A), A → B and B → A groups.
-    propagate_groups: Vec<[wgpu::BindGroup; 3]>,
-    steps: [u32; SOURCES as usize],
+    /// Seeding and propagation in order: (a propagation step, not a seed; its group).
+    dispatches: Vec<(bool, wgpu::BindGroup)>,
+    /// The accumulators every sum starts from (cleared before seeding).
+    first_accumulators: Vec<wgpu::Buffer>,
     /// Accumulated V_ρ, V_Δ and V_μ.
     pub volumes: [wgpu::Buffer; 3],
     gather: wgpu::ComputePipeline,
@@ -183,13 +184,15 @@ pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
 /// Halves the maps until every set's texels fit one buffer binding.
 pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
     let dlpv = &mut settings.dlpv;
-    let layers = fit.shadow_layers.max(2 * dlpv.probe_lights as u64);
     let max_binding = fit.max_binding;
-    let fits = |res: u64| layers * res * res * super::rsm::TEXEL_BYTES <= max_binding;
-    if !fit.shrink("dlpv.rsm_resolution", &mut dlpv.rsm_resolution, &fits, 32) {
-        bail!(
-            "the scene's lights need {layers} RSM layers, more than one GPU buffer of this device holds even at 32×32"
-        );
+    for (name, layers, resolution) in [
+        ("dlpv.rsm_resolution", fit.shadow_layers, &mut dlpv.rsm_resolution),
+        ("dlpv.probe_rsm_resolution", 2 * dlpv.probe_lights as u64, &mut dlpv.probe_rsm_resolution),
+    ] {
+        let fits = |res: u64| layers * res * res * super::rsm::TEXEL_BYTES <= max_binding;
+        if !fit.shrink(name, resolution, &fits, 32) {
+            bail!("{layers} RSM layers ({name}) need more than one GPU buffer of this device holds even at 32×32");
+        }
     }
     Ok(())
 }
@@ -198,13 +201,16 @@ pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
 pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: u64) -> Vec<(&'static str, u64)> {
     let d = &settings.dlpv;
     let cells = (d.resolution as u64).pow(3);
-    let rsm = d.rsm_resolution as u64;
-    let layers = layers + 2 * d.probe_lights as u64;
+    let maps = |layers: u64, res: u32| {
+        let res = res as u64;
+        layers * (res * res * (8 + super::rsm::TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES)
+    };
     vec![
         ("dlpv screen targets (output size × supersample²)", internal_pixels * 5 * 8),
+        ("dlpv RSMs (light layers × dlpv.rsm_resolution²)", maps(layers, d.rsm_resolution)),
         (
-            "dlpv RSMs ((light and probe-light layers) × dlpv.rsm_resolution²)",
-            layers * (rsm * rsm * (8 + super::rsm::TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES),
+            "dlpv probe-light RSMs (2 × dlpv.probe_lights × dlpv.probe_rsm_resolution²)",
+            maps(2 * d.probe_lights as u64, d.probe_rsm_resolution),
         ),
         ("dlpv volumes (dlpv.resolution³)", cells * (SOURCES as u64 * CELL_BYTES + 5 * CELL_BYTES)),
     ]
@@ -318,16 +324,11 @@ impl DlpvMethod {
         );
         let inject = compute_pipeline(device, "dlpv/inject", INJECT_SHADER, &[&inject_layout]);
         let set = |label: &str, lights: &wgpu::Buffer, layers: &[ShadowLayer], direct: bool, layers_of: LayersOf| {
-            let rsm = RsmPass::new(
-                ctx,
-                rasterizer,
-                scene,
-                lights,
-                layers,
-                settings.rsm_resolution,
-                shadows.resolution,
-                false,
-            );
+            let resolution = match layers_of {
+                LayersOf::Scene => settings.rsm_resolution,
+                LayersOf::Probe(_) => settings.probe_rsm_resolution,
+            };
+            let rsm = RsmPass::new(ctx, rasterizer, scene, lights, layers, resolution, shadows.resolution, false);
             let pairs = layer_pairs(layers, direct);
             let mut pair_words = pairs.clone();
             pair_words.resize(pairs.len().max(1), UVec4::ZERO);
@@ -338,7 +339,7 @@ impl DlpvMethod {
             });
             let size = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("dlpv/{label}_rsm_size")),
-                contents: bytemuck::bytes_of(&UVec4::new(settings.rsm_resolution, pairs.len() as u32, 0, 0)),
+                contents: bytemuck::bytes_of(&UVec4::new(resolution, pairs.len() as u32, 0, 0)),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let inject_group = bind::group(
@@ -376,7 +377,14 @@ impl DlpvMethod {
             })
         };
         let scratch = [volume("dlpv/scratch_a"), volume("dlpv/scratch_b")];
-        let volumes = [volume("dlpv/rho"), volume("dlpv/delta"), volume("dlpv/mu")];
+        // Two buffers per accumulated volume (V_ρ, V_Δ, V_μ): every dispatch reads one and
+        // writes the other. Adding into one read-write buffer from dispatch to dispatch would
+        // race on a GPU: wgpu puts no barrier between two read-write uses of a buffer in one
+        // pass (lavapipe runs them in order and hid it; the H200 did not).
+        let accumulators: Vec<[wgpu::Buffer; 2]> = ["rho", "delta", "mu"]
+            .iter()
+            .map(|v| [volume(&format!("dlpv/{v}_0")), volume(&format!("dlpv/{v}_1"))])
+            .collect();
         let propagate_layout = bind::layout(
             device,
             "dlpv/propagate_layout",
@@ -385,42 +393,51 @@ impl DlpvMethod {
                 bind::storage(1, cs),
                 bind::storage(2, cs),
                 bind::storage_rw(3, cs),
-                bind::storage_rw(4, cs),
+                bind::storage(4, cs),
+                bind::storage_rw(5, cs),
             ],
         );
         let seed = compute_pipeline_entry(device, "dlpv/seed", PROPAGATE_SHADER, "seed", &[&propagate_layout]);
         let propagate =
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
-        let propagate_groups = (0..SOURCES as usize)
-            .map(|s| {
-                let accumulated = &volumes[VOLUME_OF_SOURCE[s]];
-                let group = |name: &str, from: &wgpu::Buffer, to: &wgpu::Buffer| {
-                    bind::group(
-                        device,
-                        &format!("dlpv/source{s}_{name}"),
-                        &propagate_layout,
-                        &[
-                            source_params[s].as_entire_binding(),
-                            injected.as_entire_binding(),
-                            from.as_entire_binding(),
-                            to.as_entire_binding(),
-                            accumulated.as_entire_binding(),
-                        ],
-                    )
-                };
-                // Seeding reads no volume: B stands in for its unused `source`.
-                [
-                    group("seed", &scratch[1], &scratch[0]),
-                    group("a_to_b", &scratch[0], &scratch[1]),
-                    group("b_to_a", &scratch[1], &scratch[0]),
-                ]
-            })
-            .collect();
         let mut steps = [0; SOURCES as usize];
         steps[SOURCE_RHO] = settings.propagation_steps;
         steps[SOURCE_MU] = settings.propagation_steps;
         steps[SOURCE_INDIRECT] = settings.propagation_steps;
         steps[SOURCE_DIRECT] = settings.direct_steps;
+        // The dispatches in order: per source a seed into scratch A, then its steps between
+        // A and B, each moving its volume's sum from one accumulator to the other.
+        // Consecutive dispatches never write the same scratch buffer either (a new source's
+        // seed goes to the one the last step read).
+        let mut current = [0usize; 3];
+        let mut written = 1;
+        let mut dispatches = Vec::new();
+        for s in 0..SOURCES as usize {
+            let v = VOLUME_OF_SOURCE[s];
+            for step in 0..=steps[s] {
+                // A seed reads no volume: the other scratch stands in for its unused `source`.
+                let (from, to) = (&scratch[written], &scratch[1 - written]);
+                written = 1 - written;
+                let (sum_in, sum_out) = (&accumulators[v][current[v]], &accumulators[v][1 - current[v]]);
+                current[v] = 1 - current[v];
+                let group = bind::group(
+                    device,
+                    &format!("dlpv/source{s}_step{step}"),
+                    &propagate_layout,
+                    &[
+                        source_params[s].as_entire_binding(),
+                        injected.as_entire_binding(),
+                        from.as_entire_binding(),
+                        to.as_entire_binding(),
+                        sum_in.as_entire_binding(),
+                        sum_out.as_entire_binding(),
+                    ],
+                );
+                dispatches.push((step > 0, group));
+            }
+        }
+        let volumes: [wgpu::Buffer; 3] = std::array::from_fn(|v| accumulators[v][current[v]].clone());
+        let first_accumulators = accumulators.iter().map(|a| a[0].clone()).collect();
 
         // The per-pixel merge.
         let (gbuffer_layout, gbuffer_group) = super::pixel_inputs(
@@ -446,7 +463,8 @@ impl DlpvMethod {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let info = UVec4::new(probe_set.map_or(0, |(_, s)| s.pairs), settings.rsm_resolution, shadows.resolution, 0);
+        let info =
+            UVec4::new(probe_set.map_or(0, |(_, s)| s.pairs), settings.probe_rsm_resolution, shadows.resolution, 0);
         let probe_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dlpv/probe_info"),
             contents: bytemuck::bytes_of(&info),
@@ -487,8 +505,8 @@ impl DlpvMethod {
             inject,
             seed,
             propagate,
-            propagate_groups,
-            steps,
+            dispatches,
+            first_accumulators,
             volumes,
             gather,
             gather_groups,
@@ -544,8 +562,8 @@ impl LightTransport for DlpvMethod {
                 set.rsm.record(rec, rasterizer);
             }
             rec.encoder.clear_buffer(&self.injected, 0, None);
-            for v in &self.volumes {
-                rec.encoder.clear_buffer(v, 0, None);
+            for a in &self.first_accumulators {
+                rec.encoder.clear_buffer(a, 0, None);
             }
             let cells = self.params.info.y;
             rec.compute(Self::PROPAGATE_LABEL, |pass| {
@@ -555,15 +573,10 @@ impl LightTransport for DlpvMethod {
                     pass.set_bind_group(0, &set.inject_group, &[]);
                     pass.dispatch_workgroups(groups, groups, set.pairs);
                 }
-                for (source, groups) in self.propagate_groups.iter().enumerate() {
-                    pass.set_pipeline(&self.seed);
-                    pass.set_bind_group(0, &groups[0], &[]);
+                for (is_step, group) in &self.dispatches {
+                    pass.set_pipeline(if *is_step { &self.propagate } else { &self.seed });
+                    pass.set_bind_group(0, group, &[]);
                     dispatch_linear(pass, cells, 64);
-                    pass.set_pipeline(&self.propagate);
-                    for step in 0..self.steps[source] {
-                        pass.set_bind_group(0, &groups[1 + (step % 2) as usize], &[]);
-                        dispatch_linear(pass, cells, 64);
-                    }
                 }
             });
         }

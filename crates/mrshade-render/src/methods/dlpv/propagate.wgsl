@@ -14,7 +14,10 @@
 @group(0) @binding(1) var<storage, read> injected: array<i32>;
 @group(0) @binding(2) var<storage, read> source: array<vec4f>;
 @group(0) @binding(3) var<storage, read_write> destination: array<vec4f>;
-@group(0) @binding(4) var<storage, read_write> accumulated: array<vec4f>;
+// The volume's sum so far, and where the sum with this dispatch's result goes (two buffers:
+// one read-write buffer added to by consecutive dispatches would race, see mod.rs).
+@group(0) @binding(4) var<storage, read> sum_in: array<vec4f>;
+@group(0) @binding(5) var<storage, read_write> sum_out: array<vec4f>;
 
 const FAR_FACE_SOLID_ANGLE: f32 = 0.4006696846;
 const SIDE_FACE_SOLID_ANGLE: f32 = 0.4234413544;
@@ -36,12 +39,11 @@ fn seed(@builtin(global_invocation_id) id: vec3u) {
     let cell = id.x;
     if (cell >= cells()) { return; }
     for (var ch = 0u; ch < 3u; ch++) {
-        let at = ((params.info.z * 3u + ch) * cells() + cell) * 4u;
-        let c = vec4f(f32(injected[at]), f32(injected[at + 1u]), f32(injected[at + 2u]), f32(injected[at + 3u])) / params.scale.x;
-        destination[ch * cells() + cell] = c;
-        if (params.info.z == SOURCE_DIRECT) {
-            accumulated[ch * cells() + cell] += c;
-        }
+        let word = ((params.info.z * 3u + ch) * cells() + cell) * 4u;
+        let c = vec4f(f32(injected[word]), f32(injected[word + 1u]), f32(injected[word + 2u]), f32(injected[word + 3u])) / params.scale.x;
+        let at = ch * cells() + cell;
+        destination[at] = c;
+        sum_out[at] = sum_in[at] + select(vec4f(0.0), c, params.info.z == SOURCE_DIRECT);
     }
 }
 
@@ -79,7 +81,8 @@ fn propagate(@builtin(global_invocation_id) id: vec3u) {
         }
     }
     for (var ch = 0u; ch < 3u; ch++) {
-        destination[ch * cells() + index] = gathered[ch];
-        accumulated[ch * cells() + index] += gathered[ch];
+        let at = ch * cells() + index;
+        destination[at] = gathered[ch];
+        sum_out[at] = sum_in[at] + gathered[ch];
     }
 }
