@@ -66,6 +66,11 @@ impl IblSettings {
             (1..=256).contains(&self.samples),
             "ibl.samples",
             format!("must be between 1 and 256, got {}", self.samples),
+        )?;
+        check(
+            (16..=65536).contains(&self.prt_samples),
+            "ibl.prt_samples",
+            format!("must be between 16 and 65536, got {}", self.prt_samples),
         )
     }
 }
@@ -78,6 +83,8 @@ mod tests {
     fn bad_values_are_named() {
         let bad = IblSettings { samples: 0, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("ibl.samples"));
+        let bad = IblSettings { prt_samples: 8, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("ibl.prt_samples"));
         IblSettings::default().validate().unwrap();
     }
 }
