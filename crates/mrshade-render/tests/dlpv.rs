@@ -18,12 +18,13 @@ const SCALE: f32 = 1_048_576.0;
 fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
     let ctx = mrshade_testkit::gpu();
     let device = &ctx.device;
-    let params = DlpvParams {
+    let params = |step: u32| DlpvParams {
         origin: Vec4::new(0.0, 0.0, 0.0, 0.1),
-        info: UVec4::new(RES, CELLS, 1, 0),
+        info: UVec4::new(RES, CELLS, step, 0),
         scale: Vec4::new(SCALE, 0.0, 0.0, 0.0),
+        steps: UVec4::new(32, 32, 0, 32),
     };
-    let mut injected = vec![0i32; (3 * 3 * CELLS * 4) as usize];
+    let mut injected = vec![0i32; (4 * 3 * CELLS * 4) as usize];
     let cell = (at[2] * RES + at[1]) * RES + at[0];
     for (k, v) in c.iter().enumerate() {
         injected[((3 * CELLS + cell) * 4) as usize + k] = (v * SCALE).round() as i32;
@@ -32,10 +33,12 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage })
     };
     let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
-    let params = init("test/params", bytemuck::bytes_of(&params), wgpu::BufferUsages::UNIFORM);
+    let seed_params = init("test/seed_params", bytemuck::bytes_of(&params(0)), wgpu::BufferUsages::UNIFORM);
+    let step_params = init("test/step_params", bytemuck::bytes_of(&params(1)), wgpu::BufferUsages::UNIFORM);
     let injected = init("test/injected", cast_slice(&injected), storage);
-    let zeros = vec![0u8; (CELLS * 48) as usize];
-    let [a, b, sum_in, acc] = ["test/a", "test/b", "test/sum_in", "test/acc"].map(|l| init(l, &zeros, storage));
+    // Four sources' volumes per scratch buffer, three accumulated volumes per sum buffer.
+    let [a, b] = ["test/a", "test/b"].map(|l| init(l, &vec![0u8; (4 * CELLS * 48) as usize], storage));
+    let [sum_0, sum_1] = ["test/sum_0", "test/sum_1"].map(|l| init(l, &vec![0u8; (3 * CELLS * 48) as usize], storage));
     let cs = wgpu::ShaderStages::COMPUTE;
     let layout = bind::layout(
         device,
@@ -51,7 +54,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
     );
     let pipeline =
         |entry| mrshade_gpu::shader::compute_pipeline_entry(device, entry, PROPAGATE_SHADER, entry, &[&layout]);
-    let group = |from: &wgpu::Buffer, to: &wgpu::Buffer| {
+    let group = |params: &wgpu::Buffer, [from, to, sum_in, sum_out]: [&wgpu::Buffer; 4]| {
         bind::group(
             device,
             "test/group",
@@ -62,7 +65,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
                 from.as_entire_binding(),
                 to.as_entire_binding(),
                 sum_in.as_entire_binding(),
-                acc.as_entire_binding(),
+                sum_out.as_entire_binding(),
             ],
         )
     };
@@ -70,7 +73,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline("seed"));
-        pass.set_bind_group(0, &group(&b, &a), &[]);
+        pass.set_bind_group(0, &group(&seed_params, [&b, &a, &sum_0, &sum_1]), &[]);
         pass.dispatch_workgroups(CELLS.div_ceil(64), 1, 1);
     }
     let seeded = device.create_buffer(&wgpu::BufferDescriptor {
@@ -79,19 +82,22 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
         usage: storage | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    encoder.copy_buffer_to_buffer(&a, 0, &seeded, 0, CELLS as u64 * 48);
+    // Source 1's red channel: the volume after source 0's three channels.
+    encoder.copy_buffer_to_buffer(&a, 3 * CELLS as u64 * 16, &seeded, 0, CELLS as u64 * 48);
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline("propagate"));
-        pass.set_bind_group(0, &group(&a, &b), &[]);
+        pass.set_bind_group(0, &group(&step_params, [&a, &b, &sum_1, &sum_0]), &[]);
         pass.dispatch_workgroups(CELLS.div_ceil(64), 1, 1);
     }
     ctx.queue.submit([encoder.finish()]);
-    let red = |buffer: &wgpu::Buffer| -> Vec<Vec4> {
+    // Red channel of volume `k` (source 1 in the scratch buffers, V_Δ = 1 in the sums).
+    let red = |buffer: &wgpu::Buffer, k: usize| -> Vec<Vec4> {
         let bytes = read_buffer(&ctx, buffer).unwrap();
-        cast_slice::<u8, Vec4>(&bytes)[..CELLS as usize].to_vec()
+        let n = CELLS as usize;
+        cast_slice::<u8, Vec4>(&bytes)[3 * k * n..(3 * k + 1) * n].to_vec()
     };
-    (red(&seeded), red(&b), red(&acc))
+    (red(&seeded, 0), red(&b, 1), red(&sum_0, 1))
 }
 
 fn index(x: u32, y: u32, z: u32) -> usize {

@@ -94,6 +94,7 @@ fn dlpv_params_match() {
                 ("origin", offset_of!(dlpv::DlpvParams, origin)),
                 ("info", offset_of!(dlpv::DlpvParams, info)),
                 ("scale", offset_of!(dlpv::DlpvParams, scale)),
+                ("steps", offset_of!(dlpv::DlpvParams, steps)),
             ],
         );
     }

@@ -35,10 +35,12 @@ use wgpu::util::DeviceExt;
 pub struct DlpvParams {
     /// xyz: world position of the lower corner; w: cell side (m).
     pub origin: Vec4,
-    /// Cells per side, cells in all, source, 1 if propagation clamps negative flux.
+    /// Cells per side, cells in all, propagation step (0: seeding, injection), unused.
     pub info: UVec4,
     /// Fixed-point units per watt, unused…
     pub scale: Vec4,
+    /// Propagation steps per source.
+    pub steps: UVec4,
 }
 
 /// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
@@ -47,8 +49,8 @@ const SOURCE_RHO: usize = 0;
 const SOURCE_INDIRECT: usize = 1;
 const SOURCE_DIRECT: usize = 2;
 const SOURCE_MU: usize = 3;
-/// The accumulated volume of every source: V_ρ, V_Δ (both changes), V_μ.
-const VOLUME_OF_SOURCE: [usize; SOURCES as usize] = [0, 1, 1, 2];
+/// Accumulated volumes: V_ρ, V_Δ (both changes), V_μ.
+const VOLUMES: u64 = 3;
 
 /// Bytes of one cell of one float volume: four coefficients × three channels.
 const CELL_BYTES: u64 = 48;
@@ -152,8 +154,8 @@ impl ProbeSet {
 /// The method's passes and volumes.
 pub struct DlpvMethod {
     params: DlpvParams,
-    /// Per source: its uniform (source index, clamping) for seeding and propagation.
-    source_params: Vec<wgpu::Buffer>,
+    /// Per dispatch of seeding (0) and propagation (1, 2, …): its uniform (the step).
+    step_params: Vec<wgpu::Buffer>,
     extent: f32,
     scene_box: Option<(Vec3, Vec3)>,
     shadows: ShadowSettings,
@@ -162,12 +164,13 @@ pub struct DlpvMethod {
     inject: wgpu::ComputePipeline,
     seed: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
-    /// Seeding and propagation in order: (a propagation step, not a seed; its group).
-    dispatches: Vec<(bool, wgpu::BindGroup)>,
-    /// The accumulators every sum starts from (cleared before seeding).
-    first_accumulators: Vec<wgpu::Buffer>,
-    /// Accumulated V_ρ, V_Δ and V_μ.
-    pub volumes: [wgpu::Buffer; 3],
+    /// Seeding, then one dispatch per propagation step: their groups.
+    dispatches: Vec<wgpu::BindGroup>,
+    /// The sums every dispatch chain starts from (cleared before seeding).
+    first_sums: wgpu::Buffer,
+    /// The accumulated V_ρ, V_Δ and V_μ, one after the other (three RGB × four SH
+    /// coefficients per cell each).
+    pub volumes: wgpu::Buffer,
     gather: wgpu::ComputePipeline,
     gather_groups: [wgpu::BindGroup; 4],
     /// What direct lighting adds.
@@ -212,7 +215,7 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             "dlpv probe-light RSMs (2 × dlpv.probe_lights × dlpv.probe_rsm_resolution²)",
             maps(2 * d.probe_lights as u64, d.probe_rsm_resolution),
         ),
-        ("dlpv volumes (dlpv.resolution³)", cells * (SOURCES as u64 * CELL_BYTES + 5 * CELL_BYTES)),
+        ("dlpv volumes (dlpv.resolution³)", cells * CELL_BYTES * (SOURCES as u64 * 3 + 2 * VOLUMES)),
     ]
 }
 
@@ -288,6 +291,14 @@ impl DlpvMethod {
             origin: origin.extend(side / res as f32),
             info: UVec4::new(res, cells, 0, 0),
             scale: Vec4::new(FIXED_POINT_RANGE / bound.max(1e-12), 0.0, 0.0, 0.0),
+            steps: {
+                let mut steps = [0; SOURCES as usize];
+                steps[SOURCE_RHO] = settings.propagation_steps;
+                steps[SOURCE_MU] = settings.propagation_steps;
+                steps[SOURCE_INDIRECT] = settings.propagation_steps;
+                steps[SOURCE_DIRECT] = settings.direct_steps;
+                UVec4::from_array(steps)
+            },
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/injected"),
@@ -302,11 +313,13 @@ impl DlpvMethod {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             })
         };
-        let source_params: Vec<wgpu::Buffer> = (0..SOURCES)
-            .map(|s| {
-                let clamps = s as usize == SOURCE_RHO || s as usize == SOURCE_MU;
-                let p = DlpvParams { info: UVec4::new(res, cells, s, clamps as u32), ..params };
-                uniform(&format!("dlpv/params_source{s}"), &p)
+        let max_steps = params.steps.max_element();
+        let step_params: Vec<wgpu::Buffer> = (0..=max_steps)
+            .map(|step| {
+                uniform(
+                    &format!("dlpv/params_step{step}"),
+                    &DlpvParams { info: UVec4::new(res, cells, step, 0), ..params },
+                )
             })
             .collect();
 
@@ -347,7 +360,7 @@ impl DlpvMethod {
                 &format!("dlpv/{label}_inject_group"),
                 &inject_layout,
                 &[
-                    source_params[0].as_entire_binding(),
+                    step_params[0].as_entire_binding(),
                     rsm.texels.as_entire_binding(),
                     pairs_buffer.as_entire_binding(),
                     lights.as_entire_binding(),
@@ -367,24 +380,22 @@ impl DlpvMethod {
             sets.push(set("probe_lights", &buffer, &layers, true, LayersOf::Probe(probe)));
         }
 
-        // Seeding and propagation: per source, scratch A and B and the accumulated volume.
-        let volume = |label: &str| {
+        // Seeding and propagation: every source's volume in scratch A and B, the sums of the
+        // three accumulated volumes in two buffers.
+        let buffer = |label: &str, size: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: cells as u64 * CELL_BYTES,
+                size,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             })
         };
-        let scratch = [volume("dlpv/scratch_a"), volume("dlpv/scratch_b")];
-        // Two buffers per accumulated volume (V_ρ, V_Δ, V_μ): every dispatch reads one and
-        // writes the other. Adding into one read-write buffer from dispatch to dispatch would
-        // race on a GPU: wgpu puts no barrier between two read-write uses of a buffer in one
-        // pass (lavapipe runs them in order and hid it; the H200 did not).
-        let accumulators: Vec<[wgpu::Buffer; 2]> = ["rho", "delta", "mu"]
-            .iter()
-            .map(|v| [volume(&format!("dlpv/{v}_0")), volume(&format!("dlpv/{v}_1"))])
-            .collect();
+        let volume_bytes = cells as u64 * CELL_BYTES;
+        let scratch = ["a", "b"].map(|n| buffer(&format!("dlpv/scratch_{n}"), SOURCES as u64 * volume_bytes));
+        // Every dispatch reads one sum buffer and writes the other. Adding into one read-write
+        // buffer from dispatch to dispatch raced on the H200 (lavapipe runs dispatches in
+        // order and hid it), and so would two dispatches writing the same scratch buffer.
+        let sums = ["0", "1"].map(|n| buffer(&format!("dlpv/sums_{n}"), VOLUMES * volume_bytes));
         let propagate_layout = bind::layout(
             device,
             "dlpv/propagate_layout",
@@ -400,51 +411,35 @@ impl DlpvMethod {
         let seed = compute_pipeline_entry(device, "dlpv/seed", PROPAGATE_SHADER, "seed", &[&propagate_layout]);
         let propagate =
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
-        let mut steps = [0; SOURCES as usize];
-        steps[SOURCE_RHO] = settings.propagation_steps;
-        steps[SOURCE_MU] = settings.propagation_steps;
-        steps[SOURCE_INDIRECT] = settings.propagation_steps;
-        steps[SOURCE_DIRECT] = settings.direct_steps;
-        // The dispatches in order: per source a seed into scratch A, then its steps between
-        // A and B, each moving its volume's sum from one accumulator to the other.
-        // Consecutive dispatches never write the same scratch buffer either (a new source's
-        // seed goes to the one the last step read).
-        let mut current = [0usize; 3];
-        let mut written = 1;
-        let mut dispatches = Vec::new();
-        for s in 0..SOURCES as usize {
-            let v = VOLUME_OF_SOURCE[s];
-            for step in 0..=steps[s] {
-                // A seed reads no volume: the other scratch stands in for its unused `source`.
-                let (from, to) = (&scratch[written], &scratch[1 - written]);
-                written = 1 - written;
-                let (sum_in, sum_out) = (&accumulators[v][current[v]], &accumulators[v][1 - current[v]]);
-                current[v] = 1 - current[v];
-                let group = bind::group(
+        // Dispatch k reads scratch and sums k mod 2 and writes the others (a seed reads no
+        // scratch: the other one stands in for its unused `source`).
+        let dispatches: Vec<wgpu::BindGroup> = (0..=max_steps as usize)
+            .map(|k| {
+                let (read, write) = (k % 2, 1 - k % 2);
+                bind::group(
                     device,
-                    &format!("dlpv/source{s}_step{step}"),
+                    &format!("dlpv/step{k}_group"),
                     &propagate_layout,
                     &[
-                        source_params[s].as_entire_binding(),
+                        step_params[k].as_entire_binding(),
                         injected.as_entire_binding(),
-                        from.as_entire_binding(),
-                        to.as_entire_binding(),
-                        sum_in.as_entire_binding(),
-                        sum_out.as_entire_binding(),
+                        scratch[read].as_entire_binding(),
+                        scratch[write].as_entire_binding(),
+                        sums[read].as_entire_binding(),
+                        sums[write].as_entire_binding(),
                     ],
-                );
-                dispatches.push((step > 0, group));
-            }
-        }
-        let volumes: [wgpu::Buffer; 3] = std::array::from_fn(|v| accumulators[v][current[v]].clone());
-        let first_accumulators = accumulators.iter().map(|a| a[0].clone()).collect();
+                )
+            })
+            .collect();
+        let volumes = sums[(max_steps as usize + 1) % 2].clone();
+        let first_sums = sums[0].clone();
 
         // The per-pixel merge.
         let (gbuffer_layout, gbuffer_group) = super::pixel_inputs(
             device,
             "dlpv/gbuffer",
             frame_uniforms,
-            &source_params[0],
+            &step_params[0],
             gbuffer,
             &scene.materials.buffer,
         );
@@ -474,10 +469,17 @@ impl DlpvMethod {
             Some((p, s)) => [&p.buffer, &p.clip_from_world, &s.rsm.texels, &s.pairs_buffer],
             None => [&unused, &unused, &unused, &unused],
         };
-        let mut resources = vec![volumes[0].as_entire_binding(), volumes[1].as_entire_binding()];
+        let volume = |v: u64| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &volumes,
+                offset: v * volume_bytes,
+                size: std::num::NonZeroU64::new(volume_bytes),
+            })
+        };
+        let mut resources = vec![volume(0), volume(1)];
         resources.extend(probe_resources.map(|b| b.as_entire_binding()));
         resources.push(probe_info.as_entire_binding());
-        resources.push(volumes[2].as_entire_binding());
+        resources.push(volume(2));
         let volume_group = bind::group(device, "dlpv/volume_group", &volume_layout, &resources);
         let indirect = IndirectLight::new(device, "dlpv/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dlpv/indirect_layout", &IndirectLight::storage_entries());
@@ -496,7 +498,7 @@ impl DlpvMethod {
         ];
         Self {
             params,
-            source_params,
+            step_params,
             extent: settings.extent,
             scene_box,
             shadows: *shadows,
@@ -506,7 +508,7 @@ impl DlpvMethod {
             seed,
             propagate,
             dispatches,
-            first_accumulators,
+            first_sums,
             volumes,
             gather,
             gather_groups,
@@ -526,7 +528,7 @@ impl DlpvMethod {
         let res = self.params.info.x;
         let (origin, side) = place(geometry.virtual_box(), self.scene_box, self.extent);
         self.params.origin = origin.extend(side / res as f32);
-        for buffer in &self.source_params {
+        for buffer in &self.step_params {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&self.params.origin));
         }
         let cube = (origin, origin + Vec3::splat(side));
@@ -562,9 +564,7 @@ impl LightTransport for DlpvMethod {
                 set.rsm.record(rec, rasterizer);
             }
             rec.encoder.clear_buffer(&self.injected, 0, None);
-            for a in &self.first_accumulators {
-                rec.encoder.clear_buffer(a, 0, None);
-            }
+            rec.encoder.clear_buffer(&self.first_sums, 0, None);
             let cells = self.params.info.y;
             rec.compute(Self::PROPAGATE_LABEL, |pass| {
                 pass.set_pipeline(&self.inject);
@@ -573,8 +573,8 @@ impl LightTransport for DlpvMethod {
                     pass.set_bind_group(0, &set.inject_group, &[]);
                     pass.dispatch_workgroups(groups, groups, set.pairs);
                 }
-                for (is_step, group) in &self.dispatches {
-                    pass.set_pipeline(if *is_step { &self.propagate } else { &self.seed });
+                for (k, group) in self.dispatches.iter().enumerate() {
+                    pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
                     dispatch_linear(pass, cells, 64);
                 }

@@ -5,22 +5,38 @@
 // side face; the 30 sum to 4π, so an isotropic cell passes on all its flux), re-emitted
 // from the face as a point light ⟨n_face, ω⟩₊·flux/π. V_ρ clamps negative flux (a regular
 // LPV); the delta volume keeps it (antiradiance). Each step's result is added to the
-// accumulated volume. `seed` turns the fixed-point injection into the first step; only the
+// accumulated volume. Every source moves in the same dispatch, one dispatch per step (the
+// per-dispatch cost, not the cells, bounds a 32³ volume). `seed` turns the fixed-point
+// injection into the first step; only the
 // direct change keeps the injected cells themselves in the result (the shadow lies on the
 // surface it was injected at). Bounce light is read from the first propagation on, so a VPL
 // does not light the cell it lies in, its own surface (self-illumination, spec §2.12.9).
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> injected: array<i32>;
+// Every source's volume, source-major, then channel, then cell.
 @group(0) @binding(2) var<storage, read> source: array<vec4f>;
 @group(0) @binding(3) var<storage, read_write> destination: array<vec4f>;
-// The volume's sum so far, and where the sum with this dispatch's result goes (two buffers:
-// one read-write buffer added to by consecutive dispatches would race, see mod.rs).
+// The sums so far of V_ρ, V_Δ, V_μ (volume-major), and where the sums with this dispatch's
+// results go (two buffers: one read-write buffer added to by consecutive dispatches raced on
+// the H200, see mod.rs).
 @group(0) @binding(4) var<storage, read> sum_in: array<vec4f>;
 @group(0) @binding(5) var<storage, read_write> sum_out: array<vec4f>;
 
 const FAR_FACE_SOLID_ANGLE: f32 = 0.4006696846;
 const SIDE_FACE_SOLID_ANGLE: f32 = 0.4234413544;
+const SOURCES: u32 = 4u;
+const VOLUMES: u32 = 3u;
+
+// The accumulated volume of `s`: V_ρ, V_Δ (both changes), V_μ.
+fn volume_of(s: u32) -> u32 {
+    return select(select(1u, 2u, s == SOURCE_MU), 0u, s == SOURCE_RHO);
+}
+
+// Propagation steps of source `s` (params.steps).
+fn steps_of(s: u32) -> u32 {
+    return params.steps[s];
+}
 
 // +x, −x, +y, −y, +z, −z.
 fn axis(i: u32) -> vec3i {
@@ -34,25 +50,13 @@ fn cell_of(id: u32) -> vec3i {
     return vec3i(vec3u(id % res, (id / res) % res, id / (res * res)));
 }
 
-@compute @workgroup_size(64)
-fn seed(@builtin(global_invocation_id) id: vec3u) {
-    let cell = id.x;
-    if (cell >= cells()) { return; }
-    for (var ch = 0u; ch < 3u; ch++) {
-        let word = ((params.info.z * 3u + ch) * cells() + cell) * 4u;
-        let c = vec4f(f32(injected[word]), f32(injected[word + 1u]), f32(injected[word + 2u]), f32(injected[word + 3u])) / params.scale.x;
-        let at = ch * cells() + cell;
-        destination[at] = c;
-        sum_out[at] = sum_in[at] + select(vec4f(0.0), c, params.info.z == SOURCE_DIRECT);
-    }
+fn at(source_or_volume: u32, ch: u32, cell: u32) -> u32 {
+    return (source_or_volume * 3u + ch) * cells() + cell;
 }
 
-@compute @workgroup_size(64)
-fn propagate(@builtin(global_invocation_id) id: vec3u) {
-    let index = id.x;
-    if (index >= cells()) { return; }
-    let cell = cell_of(index);
-    let clamp_negative = params.info.w == 1u;
+// The flux `sender` (one source's cell, per channel) passes into the cell on its `flow` side.
+fn gather_from(s: u32, cell: vec3i) -> array<vec4f, 3> {
+    let clamp_negative = s == SOURCE_RHO || s == SOURCE_MU;
     var gathered = array<vec4f, 3>(vec4f(0.0), vec4f(0.0), vec4f(0.0));
     for (var a = 0u; a < 6u; a++) {
         // Light flowing along `flow` from the neighbour behind.
@@ -61,9 +65,9 @@ fn propagate(@builtin(global_invocation_id) id: vec3u) {
         if (!cell_inside(from_cell)) { continue; }
         let from_index = cell_index(from_cell);
         let sender = array<vec4f, 3>(
-            source[from_index],
-            source[cells() + from_index],
-            source[2u * cells() + from_index],
+            source[at(s, 0u, from_index)],
+            source[at(s, 1u, from_index)],
+            source[at(s, 2u, from_index)],
         );
         for (var f = 0u; f < 6u; f++) {
             let face = axis(f);
@@ -80,9 +84,50 @@ fn propagate(@builtin(global_invocation_id) id: vec3u) {
             }
         }
     }
-    for (var ch = 0u; ch < 3u; ch++) {
-        let at = ch * cells() + index;
-        destination[at] = gathered[ch];
-        sum_out[at] = sum_in[at] + gathered[ch];
+    return gathered;
+}
+
+@compute @workgroup_size(64)
+fn seed(@builtin(global_invocation_id) id: vec3u) {
+    let cell = id.x;
+    if (cell >= cells()) { return; }
+    var added: array<array<vec4f, 3>, 3>;
+    for (var s = 0u; s < SOURCES; s++) {
+        for (var ch = 0u; ch < 3u; ch++) {
+            let word = ((s * 3u + ch) * cells() + cell) * 4u;
+            let c = vec4f(f32(injected[word]), f32(injected[word + 1u]), f32(injected[word + 2u]), f32(injected[word + 3u])) / params.scale.x;
+            destination[at(s, ch, cell)] = c;
+            if (s == SOURCE_DIRECT) {
+                added[volume_of(s)][ch] += c;
+            }
+        }
+    }
+    for (var v = 0u; v < VOLUMES; v++) {
+        for (var ch = 0u; ch < 3u; ch++) {
+            sum_out[at(v, ch, cell)] = sum_in[at(v, ch, cell)] + added[v][ch];
+        }
+    }
+}
+
+@compute @workgroup_size(64)
+fn propagate(@builtin(global_invocation_id) id: vec3u) {
+    let index = id.x;
+    if (index >= cells()) { return; }
+    let cell = cell_of(index);
+    // This dispatch's step (from 1).
+    let step = params.info.z;
+    var added: array<array<vec4f, 3>, 3>;
+    for (var s = 0u; s < SOURCES; s++) {
+        if (step > steps_of(s)) { continue; }
+        let gathered = gather_from(s, cell);
+        for (var ch = 0u; ch < 3u; ch++) {
+            destination[at(s, ch, index)] = gathered[ch];
+            added[volume_of(s)][ch] += gathered[ch];
+        }
+    }
+    for (var v = 0u; v < VOLUMES; v++) {
+        for (var ch = 0u; ch < 3u; ch++) {
+            sum_out[at(v, ch, index)] = sum_in[at(v, ch, index)] + added[v][ch];
+        }
     }
 }

@@ -5,13 +5,16 @@
 struct DlpvParams {
     // xyz: world position of the lower corner; w: cell side h (m)
     origin: vec4f,
-    // cells per side, cells in all, this dispatch's source (0: V_ρ, 1: indirect change,
-    // 2: direct change, 3: V_μ), 1 if propagation clamps negative flux (V_ρ, V_μ)
+    // cells per side, cells in all, this propagation dispatch's step (from 1; 0 for seeding
+    // and injection), unused
     info: vec4u,
     // fixed-point units per watt of injected intensity coefficients, unused…
     scale: vec4f,
+    // propagation steps per source (SOURCE_*)
+    steps: vec4u,
 }
 
+// Sources of injection: V_ρ's VPLs, the indirect change, the direct change, V_μ's VPLs.
 const SOURCE_RHO: u32 = 0u;
 const SOURCE_INDIRECT: u32 = 1u;
 const SOURCE_DIRECT: u32 = 2u;
