@@ -74,7 +74,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline("seed"));
         pass.set_bind_group(0, &group(&seed_params, [&b, &a, &sum_0, &sum_1]), &[]);
-        pass.dispatch_workgroups(CELLS.div_ceil(64), 1, 1);
+        pass.dispatch_workgroups(CELLS.div_ceil(64), 9, 1);
     }
     let seeded = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("test/seeded"),
@@ -88,7 +88,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline("propagate"));
         pass.set_bind_group(0, &group(&step_params, [&a, &b, &sum_1, &sum_0]), &[]);
-        pass.dispatch_workgroups(CELLS.div_ceil(64), 1, 1);
+        pass.dispatch_workgroups(CELLS.div_ceil(64), 9, 1);
     }
     ctx.queue.submit([encoder.finish()]);
     // Red channel of volume `k` (source 1 in the scratch buffers, V_Δ = 1 in the sums).

@@ -23,7 +23,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
-use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
+use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use mrshade_scene::{Light, LightKind};
@@ -576,7 +576,8 @@ impl LightTransport for DlpvMethod {
                 for (k, group) in self.dispatches.iter().enumerate() {
                     pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
-                    dispatch_linear(pass, cells, 64);
+                    // x: cells; y: accumulated volume × channel.
+                    pass.dispatch_workgroups(cells.div_ceil(64), 3 * VOLUMES as u32, 1);
                 }
             });
         }

@@ -28,14 +28,13 @@ const SIDE_FACE_SOLID_ANGLE: f32 = 0.4234413544;
 const SOURCES: u32 = 4u;
 const VOLUMES: u32 = 3u;
 
-// The accumulated volume of `s`: V_ρ, V_Δ (both changes), V_μ.
-fn volume_of(s: u32) -> u32 {
-    return select(select(1u, 2u, s == SOURCE_MU), 0u, s == SOURCE_RHO);
-}
-
-// Propagation steps of source `s` (params.steps).
-fn steps_of(s: u32) -> u32 {
-    return params.steps[s];
+// The sources accumulated in volume `v` (V_ρ, V_Δ, V_μ), as a mask of 1 << SOURCE_*.
+fn sources_of(v: u32) -> u32 {
+    switch v {
+        case 0u: { return 1u << SOURCE_RHO; }
+        case 1u: { return (1u << SOURCE_INDIRECT) | (1u << SOURCE_DIRECT); }
+        default: { return 1u << SOURCE_MU; }
+    }
 }
 
 // +x, −x, +y, −y, +z, −z.
@@ -54,80 +53,64 @@ fn at(source_or_volume: u32, ch: u32, cell: u32) -> u32 {
     return (source_or_volume * 3u + ch) * cells() + cell;
 }
 
-// The flux `sender` (one source's cell, per channel) passes into the cell on its `flow` side.
-fn gather_from(s: u32, cell: vec3i) -> array<vec4f, 3> {
+// The light of source `s`, channel `ch`, that the neighbours send into `cell` in one step.
+fn gather_from(s: u32, ch: u32, cell: vec3i) -> vec4f {
     let clamp_negative = s == SOURCE_RHO || s == SOURCE_MU;
-    var gathered = array<vec4f, 3>(vec4f(0.0), vec4f(0.0), vec4f(0.0));
+    var gathered = vec4f(0.0);
     for (var a = 0u; a < 6u; a++) {
         // Light flowing along `flow` from the neighbour behind.
         let flow = axis(a);
         let from_cell = cell - flow;
         if (!cell_inside(from_cell)) { continue; }
-        let from_index = cell_index(from_cell);
-        let sender = array<vec4f, 3>(
-            source[at(s, 0u, from_index)],
-            source[at(s, 1u, from_index)],
-            source[at(s, 2u, from_index)],
-        );
+        let sender = source[at(s, ch, cell_index(from_cell))];
         for (var f = 0u; f < 6u; f++) {
             let face = axis(f);
             if (all(face == -flow)) { continue; }
             let is_far = all(face == flow);
             let to_face = normalize(vec3f(flow) + select(0.5 * vec3f(face), vec3f(0.0), is_far));
             let solid_angle = select(SIDE_FACE_SOLID_ANGLE, FAR_FACE_SOLID_ANGLE, is_far);
-            let toward = sh4(to_face);
-            let emit = sh4_clamped_cosine(vec3f(face)) / PI;
-            for (var ch = 0u; ch < 3u; ch++) {
-                var flux = solid_angle * dot(sender[ch], toward);
-                if (clamp_negative) { flux = max(flux, 0.0); }
-                gathered[ch] += flux * emit;
-            }
+            var flux = solid_angle * dot(sender, sh4(to_face));
+            if (clamp_negative) { flux = max(flux, 0.0); }
+            gathered += flux * sh4_clamped_cosine(vec3f(face)) / PI;
         }
     }
     return gathered;
 }
 
+// One invocation per cell (x) and accumulated volume × channel (y: 3·v + ch): a cell's work
+// spread over nine invocations, so a 32³ volume is more than one wave of the GPU.
 @compute @workgroup_size(64)
 fn seed(@builtin(global_invocation_id) id: vec3u) {
     let cell = id.x;
-    if (cell >= cells()) { return; }
-    var added: array<array<vec4f, 3>, 3>;
+    if (cell >= cells() || id.y >= 3u * VOLUMES) { return; }
+    let v = id.y / 3u;
+    let ch = id.y % 3u;
+    var added = vec4f(0.0);
     for (var s = 0u; s < SOURCES; s++) {
-        for (var ch = 0u; ch < 3u; ch++) {
-            let word = ((s * 3u + ch) * cells() + cell) * 4u;
-            let c = vec4f(f32(injected[word]), f32(injected[word + 1u]), f32(injected[word + 2u]), f32(injected[word + 3u])) / params.scale.x;
-            destination[at(s, ch, cell)] = c;
-            if (s == SOURCE_DIRECT) {
-                added[volume_of(s)][ch] += c;
-            }
-        }
+        if ((sources_of(v) & (1u << s)) == 0u) { continue; }
+        let word = at(s, ch, cell) * 4u;
+        let c = vec4f(f32(injected[word]), f32(injected[word + 1u]), f32(injected[word + 2u]), f32(injected[word + 3u])) / params.scale.x;
+        destination[at(s, ch, cell)] = c;
+        if (s == SOURCE_DIRECT) { added += c; }
     }
-    for (var v = 0u; v < VOLUMES; v++) {
-        for (var ch = 0u; ch < 3u; ch++) {
-            sum_out[at(v, ch, cell)] = sum_in[at(v, ch, cell)] + added[v][ch];
-        }
-    }
+    sum_out[at(v, ch, cell)] = sum_in[at(v, ch, cell)] + added;
 }
 
 @compute @workgroup_size(64)
 fn propagate(@builtin(global_invocation_id) id: vec3u) {
     let index = id.x;
-    if (index >= cells()) { return; }
+    if (index >= cells() || id.y >= 3u * VOLUMES) { return; }
+    let v = id.y / 3u;
+    let ch = id.y % 3u;
     let cell = cell_of(index);
     // This dispatch's step (from 1).
     let step = params.info.z;
-    var added: array<array<vec4f, 3>, 3>;
+    var added = vec4f(0.0);
     for (var s = 0u; s < SOURCES; s++) {
-        if (step > steps_of(s)) { continue; }
-        let gathered = gather_from(s, cell);
-        for (var ch = 0u; ch < 3u; ch++) {
-            destination[at(s, ch, index)] = gathered[ch];
-            added[volume_of(s)][ch] += gathered[ch];
-        }
+        if ((sources_of(v) & (1u << s)) == 0u || step > params.steps[s]) { continue; }
+        let gathered = gather_from(s, ch, cell);
+        destination[at(s, ch, index)] = gathered;
+        added += gathered;
     }
-    for (var v = 0u; v < VOLUMES; v++) {
-        for (var ch = 0u; ch < 3u; ch++) {
-            sum_out[at(v, ch, index)] = sum_in[at(v, ch, index)] + added[v][ch];
-        }
-    }
+    sum_out[at(v, ch, index)] = sum_in[at(v, ch, index)] + added;
 }
