@@ -11,22 +11,23 @@
 //! lights by median cut (`dlpv.probe_lights`) whose maps inject its bounce light and, as the
 //! direct change, its shadow. Texels seen alike by R_ρ and R_μ cancel exactly at injection.
 
+mod lights;
+
 use super::around::place;
 use super::rsm::RsmPass;
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::raster::Rasterizer;
-use crate::scene_gpu::{GpuProbe, ShadowLayer, pack_lights};
+use crate::scene_gpu::{GpuProbe, ShadowLayer};
 use anyhow::{Result, bail};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
-use mrshade_core::flags::Realness;
+use lights::{LayersOf, LightSet, ProbeSet, bounding_radius, layer_pairs, power_bound};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, bind, wgsl};
-use mrshade_scene::{Light, LightKind};
 use wgpu::util::DeviceExt;
 
 /// Mirrors `DlpvParams` in volume.wgsl.
@@ -57,99 +58,6 @@ const CELL_BYTES: u64 = 48;
 /// Fixed-point headroom: all injected flux of a source, times the largest coefficient
 /// magnitude, stays below 2³¹ units.
 const FIXED_POINT_RANGE: f32 = (1u32 << 29) as f32;
-
-/// One light set's maps and how their layers pair up.
-struct LightSet {
-    rsm: RsmPass,
-    inject_group: wgpu::BindGroup,
-    pairs: u32,
-    pairs_buffer: wgpu::Buffer,
-    /// The set's lights (the probe's follow the volume; the scene's are the scene's).
-    layers_of: LayersOf,
-}
-
-/// Where a set's layers come from.
-enum LayersOf {
-    /// The scene's lights: the frame's shadow layers.
-    Scene,
-    /// Directional lights split from the probe, their maps around the volume.
-    Probe(ProbeSet),
-}
-
-/// The probe's directional lights on the GPU.
-struct ProbeSet {
-    lights: Vec<Light>,
-    /// Their `GpuLight`s.
-    buffer: wgpu::Buffer,
-    /// `clip_from_world` of their layers (the merge looks up visibility).
-    clip_from_world: wgpu::Buffer,
-}
-
-/// The probe's lights and their layers: maps as wide as the cube's bounding sphere (where
-/// their texels matter) but deep enough toward the light to hold everything of the scene
-/// there (the walls and ceiling of a room hide the sky from what is inside).
-fn probe_layers(
-    lights: &[Light],
-    cube: (Vec3, Vec3),
-    scene_box: Option<(Vec3, Vec3)>,
-    shadows: &ShadowSettings,
-) -> (Vec<crate::scene_gpu::GpuLight>, Vec<ShadowLayer>) {
-    let (gpu_lights, mut layers) = pack_lights(lights, Some(cube), shadows);
-    let center = (cube.0 + cube.1) * 0.5;
-    let radius = bounding_radius(Some(cube));
-    for layer in &mut layers {
-        let dir = lights[layer.light as usize].direction();
-        let toward_light = scene_box.map_or(0.0, |b| {
-            mrshade_core::math::box_corners(b).iter().map(|c| (*c - center).dot(-dir)).fold(0.0, f32::max)
-        });
-        let back = toward_light.max(radius) * 1.01 + 1e-3;
-        let eye = center - dir * back;
-        let proj = glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, back + radius, 0.0);
-        layer.clip_from_world = proj * crate::scene_gpu::look_to(eye, dir);
-    }
-    (gpu_lights, layers)
-}
-
-impl ProbeSet {
-    fn new(
-        device: &wgpu::Device,
-        lights: Vec<Light>,
-        cube: (Vec3, Vec3),
-        scene_box: Option<(Vec3, Vec3)>,
-        shadows: &ShadowSettings,
-    ) -> (Self, Vec<ShadowLayer>) {
-        let (gpu_lights, layers) = probe_layers(&lights, cube, scene_box, shadows);
-        let storage = |label: &str, contents: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            })
-        };
-        let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
-        let set = Self {
-            lights,
-            buffer: storage("dlpv/probe_lights", bytemuck::cast_slice(&gpu_lights)),
-            clip_from_world: storage("dlpv/probe_clip_from_world", bytemuck::cast_slice(&clips)),
-        };
-        (set, layers)
-    }
-
-    /// Moves the maps to cover `cube`; the layers for the RSM pass.
-    fn follow(
-        &self,
-        queue: &wgpu::Queue,
-        cube: (Vec3, Vec3),
-        scene_box: Option<(Vec3, Vec3)>,
-        shadows: &ShadowSettings,
-    ) -> Vec<ShadowLayer> {
-        let (gpu_lights, layers) = probe_layers(&self.lights, cube, scene_box, shadows);
-        let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
-        queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&gpu_lights));
-        queue.write_buffer(&self.clip_from_world, 0, bytemuck::cast_slice(&clips));
-        layers
-    }
-}
 
 /// The method's passes and volumes.
 pub struct DlpvMethod {
@@ -217,45 +125,6 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
         ),
         ("dlpv volumes (dlpv.resolution³)", cells * CELL_BYTES * (SOURCES as u64 * 3 + 2 * VOLUMES)),
     ]
-}
-
-/// Pairs of a set's layers: (real-only layer, virtual-only layer, light, 1 if the light's
-/// direct change is injected), face by face.
-fn layer_pairs(layers: &[ShadowLayer], direct: bool) -> Vec<UVec4> {
-    let real = layers.iter().enumerate().filter(|(_, l)| l.casters == Realness::Real);
-    real.map(|(i, l)| {
-        let face = layers[..i].iter().filter(|o| o.light == l.light && o.casters == Realness::Real).count();
-        let virtual_layer = layers
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| o.light == l.light && o.casters == Realness::Virtual)
-            .nth(face)
-            .map(|(j, _)| j)
-            .expect("every real layer has a virtual twin");
-        UVec4::new(i as u32, virtual_layer as u32, l.light, direct as u32)
-    })
-    .collect()
-}
-
-/// Upper bound of the power all of `lights`' map texels receive (W), for the fixed point:
-/// intensity × 4π for lights at a point, irradiance × the map's square for directional ones
-/// (of side `2·radius`).
-fn power_bound(lights: &[Light], radius: f32) -> f32 {
-    lights
-        .iter()
-        .map(|l| {
-            let i = l.intensity.max_element().max(0.0);
-            match l.kind {
-                LightKind::Directional => i * 4.0 * radius * radius,
-                _ => i * 4.0 * std::f32::consts::PI,
-            }
-        })
-        .sum()
-}
-
-/// Half the diagonal of a box (what `pack_lights` covers a directional map with).
-fn bounding_radius(bounds: Option<(Vec3, Vec3)>) -> f32 {
-    bounds.map_or(1.0, |(lo, hi)| ((hi - lo).length() * 0.5).max(1e-3))
 }
 
 impl DlpvMethod {
