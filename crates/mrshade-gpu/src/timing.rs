@@ -36,7 +36,8 @@ pub struct Dispatch {
 }
 
 impl Dispatch {
-    fn record(&self, pass: &mut wgpu::ComputePass) {
+    /// Sets the pipeline and groups and dispatches.
+    pub fn record(&self, pass: &mut wgpu::ComputePass) {
         pass.set_pipeline(&self.pipeline);
         for (i, g) in self.groups.iter().enumerate() {
             pass.set_bind_group(i as u32, g, &[]);

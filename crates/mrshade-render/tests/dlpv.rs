@@ -5,7 +5,7 @@
 use bytemuck::cast_slice;
 use glam::{UVec4, Vec4};
 use mrshade_gpu::{bind, readback::read_buffer};
-use mrshade_render::methods::dlpv::{DlpvParams, PROPAGATE_SHADER};
+use mrshade_render::methods::dlpv::{DlpvParams, PROPAGATE_SHADER, propagate_layout};
 use wgpu::util::DeviceExt;
 
 const RES: u32 = 8;
@@ -39,19 +39,7 @@ fn one_step(at: [u32; 3], c: [f32; 4]) -> (Vec<Vec4>, Vec<Vec4>, Vec<Vec4>) {
     // Four sources' volumes per scratch buffer, three accumulated volumes per sum buffer.
     let [a, b] = ["test/a", "test/b"].map(|l| init(l, &vec![0u8; (4 * CELLS * 48) as usize], storage));
     let [sum_0, sum_1] = ["test/sum_0", "test/sum_1"].map(|l| init(l, &vec![0u8; (3 * CELLS * 48) as usize], storage));
-    let cs = wgpu::ShaderStages::COMPUTE;
-    let layout = bind::layout(
-        device,
-        "test/layout",
-        &[
-            bind::uniform(0, cs),
-            bind::storage(1, cs),
-            bind::storage(2, cs),
-            bind::storage_rw(3, cs),
-            bind::storage(4, cs),
-            bind::storage_rw(5, cs),
-        ],
-    );
+    let layout = propagate_layout(device);
     let pipeline =
         |entry| mrshade_gpu::shader::compute_pipeline_entry(device, entry, PROPAGATE_SHADER, entry, &[&layout]);
     let group = |params: &wgpu::Buffer, [from, to, sum_in, sum_out]: [&wgpu::Buffer; 4]| {

@@ -14,7 +14,7 @@ pub use bake::bake;
 use crate::passes::probe_sh::ProbeShPass;
 use crate::scene_gpu::Geometry;
 use mrshade_core::flags::Realness;
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
@@ -69,11 +69,10 @@ impl Transfer {
 
 /// The per-pixel evaluation.
 pub struct PrtPass {
-    pipeline: wgpu::ComputePipeline,
-    group: wgpu::BindGroup,
+    /// The pass over the internal size.
+    dispatch: Dispatch,
     /// PRT irradiance (rgb) and where it applies (a).
     pub irradiance: Target,
-    size: (u32, u32),
 }
 
 impl PrtPass {
@@ -136,16 +135,13 @@ impl PrtPass {
             ],
         );
         let pipeline = mrshade_gpu::shader::compute_pipeline(device, "prt", SHADER, &[&layout]);
-        Self { pipeline, group, irradiance, size }
+        let workgroups = [size.0.div_ceil(8), size.1.div_ceil(8), 1];
+        Self { dispatch: Dispatch { pipeline, groups: vec![group], workgroups }, irradiance }
     }
 
     /// Evaluates every pixel.
     pub fn record(&self, rec: &mut Recorder) {
-        rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.group, &[]);
-            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
-        });
+        rec.compute(Self::LABEL, |pass| self.dispatch.record(pass));
     }
 }
 

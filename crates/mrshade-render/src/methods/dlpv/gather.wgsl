@@ -19,16 +19,15 @@
 @group(0) @binding(6) var gbuffer_flags: texture_2d<u32>;
 @group(0) @binding(7) var<storage, read> materials: array<Material>;
 
-@group(1) @binding(0) var<storage, read> volume_rho: array<vec4f>;
-@group(1) @binding(1) var<storage, read> volume_delta: array<vec4f>;
-@group(1) @binding(7) var<storage, read> volume_mu: array<vec4f>;
+// The accumulated V_ρ, V_Δ, V_μ one after the other, each channel-major.
+@group(1) @binding(0) var<storage, read> volumes: array<vec4f>;
 // The probe's directional lights, their layers' clip_from_world, their maps' texels, their
 // layer pairs, and (pairs, map side, 0, 0).
-@group(1) @binding(2) var<storage, read> probe_lights: array<Light>;
-@group(1) @binding(3) var<storage, read> probe_clip_from_world: array<mat4x4f>;
-@group(1) @binding(4) var<storage, read> probe_rsm: array<RsmTexel>;
-@group(1) @binding(5) var<storage, read> probe_pairs: array<vec4u>;
-@group(1) @binding(6) var<uniform> probe_info: vec4u;
+@group(1) @binding(1) var<storage, read> probe_lights: array<Light>;
+@group(1) @binding(2) var<storage, read> probe_clip_from_world: array<mat4x4f>;
+@group(1) @binding(3) var<storage, read> probe_rsm: array<RsmTexel>;
+@group(1) @binding(4) var<storage, read> probe_pairs: array<vec4u>;
+@group(1) @binding(5) var<uniform> probe_info: vec4u;
 
 // Whether the map texel of `layer` at `p` holds a surface nearer to the light (along `l`,
 // toward it) than `p`, beyond `bias`.
@@ -77,12 +76,12 @@ const VOLUME_DELTA: u32 = 1u;
 const VOLUME_MU: u32 = 2u;
 
 fn cell_light(volume: u32, i: u32, lobe: vec4f) -> vec3f {
-    let n = cells();
-    switch volume {
-        case VOLUME_RHO: { return vec3f(dot(volume_rho[i], lobe), dot(volume_rho[n + i], lobe), dot(volume_rho[2u * n + i], lobe)); }
-        case VOLUME_MU: { return vec3f(dot(volume_mu[i], lobe), dot(volume_mu[n + i], lobe), dot(volume_mu[2u * n + i], lobe)); }
-        default: { return vec3f(dot(volume_delta[i], lobe), dot(volume_delta[n + i], lobe), dot(volume_delta[2u * n + i], lobe)); }
-    }
+    let first = volume * 3u * cells() + i;
+    return vec3f(
+        dot(volumes[first], lobe),
+        dot(volumes[first + cells()], lobe),
+        dot(volumes[first + 2u * cells()], lobe),
+    );
 }
 
 // Irradiance from `volume` at `p` on a surface of normal `n`; zero outside the volume.
@@ -116,7 +115,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let m = materials[material_of(flags)];
     s.transmission = m.transmission.x;
     let specular_albedo = env_specular_albedo(s);
-    let diffuse = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
+    let diffuse = env_diffuse_weight(s, specular_albedo) * s.base_color / PI;
     if (is_real(flags)) {
         let model = diffuse * max(volume_irradiance(VOLUME_MU, s.position, s.normal), vec3f(0.0));
         let change = diffuse * volume_irradiance(VOLUME_DELTA, s.position, s.normal);

@@ -26,7 +26,7 @@ use glam::{UVec4, Vec3, Vec4};
 use lights::{LayersOf, LightSet, ProbeSet, bounding_radius, layer_pairs, power_bound};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -79,17 +79,34 @@ pub struct DlpvMethod {
     /// The accumulated V_ρ, V_Δ and V_μ, one after the other (three RGB × four SH
     /// coefficients per cell each).
     pub volumes: wgpu::Buffer,
-    gather: wgpu::ComputePipeline,
-    gather_groups: [wgpu::BindGroup; 4],
+    /// The per-pixel pass, over the internal size.
+    gather: Dispatch,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     stale: bool,
-    size: (u32, u32),
 }
 
 /// Builds the method (the registry's `build`).
 pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DlpvMethod::new(inputs))
+}
+
+/// The layout of seeding and propagation (propagate.wgsl's group 0): the uniform, the
+/// fixed-point injection, scratch in and out, sums in and out.
+pub fn propagate_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let cs = wgpu::ShaderStages::COMPUTE;
+    bind::layout(
+        device,
+        "dlpv/propagate_layout",
+        &[
+            bind::uniform(0, cs),
+            bind::storage(1, cs),
+            bind::storage(2, cs),
+            bind::storage_rw(3, cs),
+            bind::storage(4, cs),
+            bind::storage_rw(5, cs),
+        ],
+    )
 }
 
 /// Halves the maps until every set's texels fit one buffer binding.
@@ -265,18 +282,7 @@ impl DlpvMethod {
         // buffer from dispatch to dispatch raced on the H200 (lavapipe runs dispatches in
         // order and hid it), and so would two dispatches writing the same scratch buffer.
         let sums = ["0", "1"].map(|n| buffer(&format!("dlpv/sums_{n}"), VOLUMES * volume_bytes));
-        let propagate_layout = bind::layout(
-            device,
-            "dlpv/propagate_layout",
-            &[
-                bind::uniform(0, cs),
-                bind::storage(1, cs),
-                bind::storage(2, cs),
-                bind::storage_rw(3, cs),
-                bind::storage(4, cs),
-                bind::storage_rw(5, cs),
-            ],
-        );
+        let propagate_layout = propagate_layout(device);
         let seed = compute_pipeline_entry(device, "dlpv/seed", PROPAGATE_SHADER, "seed", &[&propagate_layout]);
         let propagate =
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
@@ -312,9 +318,10 @@ impl DlpvMethod {
             gbuffer,
             &scene.materials.buffer,
         );
-        let mut entries: Vec<_> = (0..6).map(|b| bind::storage(b, cs)).collect();
-        entries.push(bind::uniform(6, cs));
-        entries.push(bind::storage(7, cs));
+        // 0: the three volumes; 1–4: the probe's lights, their layers, maps and pairs; 5: the
+        // probe lights' counts.
+        let mut entries: Vec<_> = (0..5).map(|b| bind::storage(b, cs)).collect();
+        entries.push(bind::uniform(5, cs));
         let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
         // The probe's lights for the virtual pixels' visibility (none: one unused word each).
         let probe_set = sets.iter().find_map(|s| match &s.layers_of {
@@ -338,17 +345,9 @@ impl DlpvMethod {
             Some((p, s)) => [&p.buffer, &p.clip_from_world, &s.rsm.texels, &s.pairs_buffer],
             None => [&unused, &unused, &unused, &unused],
         };
-        let volume = |v: u64| {
-            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer: &volumes,
-                offset: v * volume_bytes,
-                size: std::num::NonZeroU64::new(volume_bytes),
-            })
-        };
-        let mut resources = vec![volume(0), volume(1)];
+        let mut resources = vec![volumes.as_entire_binding()];
         resources.extend(probe_resources.map(|b| b.as_entire_binding()));
         resources.push(probe_info.as_entire_binding());
-        resources.push(volume(2));
         let volume_group = bind::group(device, "dlpv/volume_group", &volume_layout, &resources);
         let indirect = IndirectLight::new(device, "dlpv/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dlpv/indirect_layout", &IndirectLight::storage_entries());
@@ -359,7 +358,7 @@ impl DlpvMethod {
             GATHER_SHADER,
             &[&gbuffer_layout, &volume_layout, &indirect_layout, &probe_layout],
         );
-        let gather_groups = [
+        let gather_groups = vec![
             gbuffer_group,
             volume_group,
             bind::group(device, "dlpv/indirect_group", &indirect_layout, &indirect.resources()),
@@ -379,11 +378,13 @@ impl DlpvMethod {
             dispatches,
             first_sums,
             volumes,
-            gather,
-            gather_groups,
+            gather: Dispatch {
+                pipeline: gather,
+                groups: gather_groups,
+                workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
+            },
             indirect,
             stale: true,
-            size: internal_size,
         }
     }
 
@@ -450,13 +451,7 @@ impl LightTransport for DlpvMethod {
                 }
             });
         }
-        rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.gather);
-            for (i, g) in self.gather_groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
-            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
-        });
+        rec.compute(Self::LABEL, |pass| self.gather.record(pass));
     }
 
     fn indirect(&self) -> Option<&IndirectLight> {

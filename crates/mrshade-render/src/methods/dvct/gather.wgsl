@@ -52,7 +52,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let o = cone_origin(s.position, s.normal);
     let e = gather_diffuse(s.position, s.normal);
     let specular_albedo = env_specular_albedo(s);
-    let diffuse = (vec3f(1.0) - specular_albedo) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.base_color / PI;
+    let diffuse = env_diffuse_weight(s, specular_albedo) * s.base_color / PI;
     var l_rv = diffuse * e.rv;
     var l_r = diffuse * e.r;
     if (!is_traced(m)) {

@@ -27,7 +27,7 @@ use anyhow::{Result, bail};
 use glam::{UVec4, Vec4};
 use mrshade_core::settings::RenderSettings;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -52,15 +52,14 @@ pub struct DvctMethod {
     mips: wgpu::ComputePipeline,
     /// Per volume pair, per level from 1: the group and the level's side.
     mip_groups: Vec<Vec<(wgpu::BindGroup, u32)>>,
-    gather: wgpu::ComputePipeline,
-    gather_groups: [wgpu::BindGroup; 4],
+    /// The per-pixel pass, over the internal size.
+    gather: Dispatch,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     /// The volumes the pixels' cones read (the second bounce's, else the first's).
     pub volumes: VolumePair,
     stale_voxels: bool,
     stale_light: bool,
-    size: (u32, u32),
 }
 
 /// Builds the method (the registry's `build`).
@@ -343,7 +342,7 @@ impl DvctMethod {
             GATHER_SHADER,
             &[&gbuffer_layout, &volume_layout, &indirect_layout, &probe_layout],
         );
-        let gather_groups = [
+        let gather_groups = vec![
             gbuffer_group,
             volume_group(&volumes, "dvct/volume_group"),
             bind::group(device, "dvct/indirect_group", &indirect_layout, &indirect.resources()),
@@ -364,13 +363,15 @@ impl DvctMethod {
             bounce,
             mips,
             mip_groups,
-            gather,
-            gather_groups,
+            gather: Dispatch {
+                pipeline: gather,
+                groups: gather_groups,
+                workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
+            },
             indirect,
             volumes,
             stale_voxels: true,
             stale_light: true,
-            size: internal_size,
         }
     }
 
@@ -437,13 +438,7 @@ impl LightTransport for DvctMethod {
                 }
             });
         }
-        rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.gather);
-            for (i, g) in self.gather_groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
-            pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
-        });
+        rec.compute(Self::LABEL, |pass| self.gather.record(pass));
     }
 
     fn indirect(&self) -> Option<&IndirectLight> {

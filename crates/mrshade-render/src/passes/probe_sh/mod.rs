@@ -6,7 +6,7 @@
 
 use crate::scene_gpu::GpuProbe;
 use glam::UVec4;
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -15,12 +15,11 @@ const SOURCE_WIDTH: u32 = 128;
 
 /// The projection pass and its output.
 pub struct ProbeShPass {
-    pipeline: wgpu::ComputePipeline,
-    group: wgpu::BindGroup,
+    /// One workgroup per frame (the probe's, then each PRT instance's).
+    dispatch: Dispatch,
     /// Nine `vec4f` per frame (rgb: radiance coefficient `c_i` of the unscaled probe), the
     /// probe's own first, then each of `prt_instances`' object frames.
     pub coefficients: wgpu::Buffer,
-    frames: u32,
 }
 
 impl ProbeShPass {
@@ -91,16 +90,12 @@ impl ProbeShPass {
             ],
         );
         let pipeline = mrshade_gpu::shader::compute_pipeline(device, "probe_sh", SHADER, &[&layout]);
-        Self { pipeline, group, coefficients, frames }
+        Self { dispatch: Dispatch { pipeline, groups: vec![group], workgroups: [frames, 1, 1] }, coefficients }
     }
 
     /// Projects the probe.
     pub fn record(&self, rec: &mut Recorder) {
-        rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.group, &[]);
-            pass.dispatch_workgroups(self.frames, 1, 1);
-        });
+        rec.compute(Self::LABEL, |pass| self.dispatch.record(pass));
     }
 }
 
