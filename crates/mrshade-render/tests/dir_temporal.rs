@@ -147,14 +147,28 @@ fn a_moving_virtual_object_takes_its_probe_shadow_along() {
 /// Inside a closed sphere of albedo ρ = 0.5 with a point light of intensity I at its centre,
 /// every point receives the direct radiance ρ I / (π R²) and, over all bounces, a total of
 /// that times 1 / (1 − ρ) = 2 (the sphere's interreflection series). The multiple-bounce
-/// source must carry the light to that limit.
+/// source must carry the light to that limit, with either placement of its VPLs (a diffuse
+/// patch of a sphere lights its inside evenly, so only the energy counts): DIR v1's fitness
+/// once multiplied it ×300 per frame until the image went black.
 #[test]
 fn multiple_bounces_reach_the_closed_form_in_a_sphere() {
+    // v1 puts its VPLs where the most light lands, next to their sources (measured 5.7 % low
+    // at 24 frames, against 4.2 % for the importance-sampled rays).
+    for (bounce, tolerance) in [("importance", 0.05), ("fitness", 0.08)] {
+        let mean = sphere_interreflection(bounce);
+        let direct = 0.5 / std::f32::consts::PI;
+        eprintln!("{bounce}: L_rv {mean:.4}, closed form {:.4} (direct {direct:.4})", 2.0 * direct);
+        assert!((mean / (2.0 * direct) - 1.0).abs() < tolerance, "{bounce}: L_rv {mean} vs {}", 2.0 * direct);
+    }
+}
+
+/// Mean L_rv over the middle of the view inside the sphere, with `dir.bounce = bounce`.
+fn sphere_interreflection(bounce: &str) -> f32 {
     let mut s = Setup::top_down(32);
     s.gltf = mrshade_testkit::gltf::GltfBuilder::new();
     s.gltf.camera_node("camera", 1.0, None, [0.0, 0.0, 0.5], mrshade_testkit::gltf::quat([0.0, 1.0, 0.0], 0.0));
     s.top_toml = "method = \"dir\"\n".into();
-    s.extra_toml = "[output]\nframes = 24\n".into();
+    s.extra_toml = format!("[output]\nframes = 24\n[dir]\nbounce = \"{bounce}\"\n");
     let m = s.gltf.material(json!({"name": "inside", "doubleSided": true,
         "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}));
     let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(1.0, 48), Some(m), true);
@@ -164,14 +178,11 @@ fn multiple_bounces_reach_the_closed_form_in_a_sphere() {
         json!({"name": "lamp", "extensions": {"KHR_lights_punctual": {"light": light}}, "extras": {"real": true}}),
     );
     let r = s.render();
-    let direct = 0.5 / std::f32::consts::PI;
     let mut sum = 0.0;
     for y in 8..24 {
         for x in 8..24 {
             sum += r.l_rv(x, y).x;
         }
     }
-    let mean = sum / 256.0;
-    eprintln!("L_rv {mean:.4}, closed form {:.4} (direct {direct:.4})", 2.0 * direct);
-    assert!((mean / (2.0 * direct) - 1.0).abs() < 0.05, "L_rv {mean} vs {}", 2.0 * direct);
+    sum / 256.0
 }

@@ -26,16 +26,25 @@ fn from_uvw(q: vec3f, axis: u32) -> vec3f {
     return q;
 }
 
+// Slack (in cells) of the boundary tests. A surface that lies exactly on a cell boundary (a
+// desk at y = 0 in a volume placed around an object resting on it, so the boundary lands on
+// a whole number of cells) fell on either side depending on how the GPU rounds the division
+// into cells (lavapipe and NVIDIA differed). Layers are nudged up by the slack, so such a
+// plane lands in the cell above it on every GPU (marking both made the desk two cells thick
+// and its cones start inside it); the coverage in u, v is widened by it.
+const BOUNDARY_SLACK: f32 = 1e-3;
+
 fn edge(a: vec2f, b: vec2f, q: vec2f) -> f32 {
     return (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x);
 }
 
 // Whether the cell centred on `q` (unit cells) touches the triangle a, b, c (orientation
-// `s`): each edge function is relaxed by the cell's half extent along the edge's normal.
+// `s`): each edge function is relaxed by the cell's half extent (and the slack) along the
+// edge's normal.
 fn covers(q: vec2f, a: vec2f, b: vec2f, c: vec2f, s: f32) -> bool {
-    let ea = s * edge(a, b, q) + 0.5 * (abs(b.x - a.x) + abs(b.y - a.y));
-    let eb = s * edge(b, c, q) + 0.5 * (abs(c.x - b.x) + abs(c.y - b.y));
-    let ec = s * edge(c, a, q) + 0.5 * (abs(a.x - c.x) + abs(a.y - c.y));
+    let ea = s * edge(a, b, q) + (0.5 + BOUNDARY_SLACK) * (abs(b.x - a.x) + abs(b.y - a.y));
+    let eb = s * edge(b, c, q) + (0.5 + BOUNDARY_SLACK) * (abs(c.x - b.x) + abs(c.y - b.y));
+    let ec = s * edge(c, a, q) + (0.5 + BOUNDARY_SLACK) * (abs(a.x - c.x) + abs(a.y - c.y));
     return ea >= 0.0 && eb >= 0.0 && ec >= 0.0;
 }
 
@@ -67,8 +76,8 @@ fn cs_main(
     let w_lo = min(min(a.z, b.z), c.z);
     let w_hi = max(max(a.z, b.z), c.z);
     if (w_hi < 0.0 || w_lo >= res) { return; }
-    let lo = max(floor(min(min(a.xy, b.xy), c.xy)), vec2f(0.0));
-    let hi = min(floor(max(max(a.xy, b.xy), c.xy)), vec2f(res - 1.0));
+    let lo = max(floor(min(min(a.xy, b.xy), c.xy) - BOUNDARY_SLACK), vec2f(0.0));
+    let hi = min(floor(max(max(a.xy, b.xy), c.xy) + BOUNDARY_SLACK), vec2f(res - 1.0));
     if (any(lo > hi)) { return; }
     let size = vec2u(hi - lo) + 1u;
     let s = select(-1.0, 1.0, n.z >= 0.0);
@@ -80,8 +89,8 @@ fn cs_main(
         let q = cell + 0.5;
         if (!covers(q, a.xy, b.xy, c.xy, s)) { continue; }
         let w = a.z + dot(slope, q - a.xy);
-        let w0 = max(floor(max(w - rise, w_lo)), 0.0);
-        let w1 = min(floor(min(w + rise, w_hi)), res - 1.0);
+        let w0 = max(floor(max(w - rise, w_lo) + BOUNDARY_SLACK), 0.0);
+        let w1 = min(floor(min(w + rise, w_hi) + BOUNDARY_SLACK), res - 1.0);
         for (var z = w0; z <= w1; z += 1.0) {
             let voxel = vec3u(from_uvw(vec3f(cell, z), axis));
             atomicMax(&voxels[voxel_index(voxel) * 2u + slot], triangle + 1u);

@@ -157,7 +157,9 @@ fn cs_candidates(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgro
         } else {
             let l = to / dist;
             let cos_p = abs(dot(p.normal, l));
-            received = luminance(vpl_intensity(v, l)) * cos_p / (dist * dist);
+            // Clamped as the gather clamps: the point next to the source in a corner would
+            // otherwise win every slot.
+            received = luminance(vpl_intensity(v, l)) * cos_p / max(dist * dist, params.bounce.w * params.bounce.w);
         }
         let vis = previous_visibility(b.info.y, v, p.position, p.normal);
         let fitness = received * luminance(materials[p.material].base_color.rgb) * min(vis.x, vis.y);
@@ -210,15 +212,11 @@ fn cs_finalize(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_in
     var power = b.carry.rgb * split;
     if (params.modes.y == 2u) {
         // DIR v1 has no sampling density: the winner stands for its share of the surfaces.
-        let source = previous[b.info.y];
-        let area = (params.bounce.y + params.bounce.z) / f32(bounce_range().y);
-        v.position.w = area;
-        if (vpl_kind(source) == VPL_DIRECTIONAL) {
-            power = source.power.rgb * area * max(dot(n, incoming), 0.0);
-        } else {
-            power = vpl_intensity(source, -incoming) * area * max(dot(n, incoming), 0.0) / d2;
-        }
-        power /= max(b.carry.w, 1e-8);
+        // Its power is the slot's share of what the source reflects (the carry, as for a
+        // traced ray), so the bounce conserves energy wherever the fitness puts it. (The
+        // irradiance at the winner times that area was the *most* light any candidate got,
+        // spread over all surfaces: it grew ×300 per frame and blacked the image.)
+        v.position.w = (params.bounce.y + params.bounce.z) / f32(bounce_range().y);
     }
     v.power = vec4f(power, m.params.x);
     v.albedo = vec4f(vpl_base_color(m, m.base_color.rgb, m.params.x), m.dielectric.a);

@@ -14,7 +14,8 @@ struct VplParams {
     // distribution (0 equal, 1 weighted, 2 flux), bounce method (0 off, 1 importance, 2 fitness),
     // real points, virtual points
     modes: vec4u,
-    // cos(bounce cone), total real surface area, total virtual surface area, unused
+    // cos(bounce cone), total real surface area, total virtual surface area, d_min (the VPL
+    // distance clamp, m)
     bounce: vec4f,
     // virtual bounding spheres, 1 if the probe's light reflected by traced surfaces flies as
     // the specular stage's photons (RenderSettings::probe_caustics), the punctual lights'

@@ -211,7 +211,12 @@ impl VplPass {
                 ism.real_count,
                 ism.virtual_count,
             ),
-            bounce: Vec4::new(settings.bounce_cone_deg.to_radians().cos(), ism.areas.0, ism.areas.1, 0.0),
+            bounce: Vec4::new(
+                settings.bounce_cone_deg.to_radians().cos(),
+                ism.areas.0,
+                ism.areas.1,
+                settings.clamp_distance * radius,
+            ),
             strata: UVec4::new(
                 0,
                 session.settings.probe_caustics() as u32,
