@@ -117,7 +117,7 @@ impl Renderer {
         let changed = camera_moved || self.scene.geometry.moved() || lights_moved || inputs.photo.is_some();
         self.uniforms.set_camera(&inputs.camera, inputs.jitter, self.previous_clip_from_world);
         self.previous_clip_from_world = Some(unjittered);
-        self.gbuffer_pass.camera.set_clip_from_world(queue, self.uniforms.clip_from_world);
+        self.gbuffer_pass.camera.set_clip_from_world(queue, 0, self.uniforms.clip_from_world);
         if let Some(specular) = &mut self.specular {
             let eye = self.uniforms.camera_position.truncate();
             specular.prepare(queue, &self.scene.geometry, self.uniforms.clip_from_world, eye, changed);

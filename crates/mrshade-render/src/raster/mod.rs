@@ -1,7 +1,9 @@
 //! Compute rasteriser shared by every view that needs visibility: the camera's visibility
-//! buffer, the shadow maps and the reflective shadow maps. Each view owns a 64-bit target
-//! (reversed depth in the high word, triangle id + 1 in the low word) written with
-//! `atomicMax`; see raster.wgsl for why this is not the fixed-function rasteriser.
+//! buffer, the shadow maps, the reflective shadow maps and the specular stage's impostors.
+//! Each view writes a 64-bit target (reversed depth in the high word, triangle id + 1 in the
+//! low word) with `atomicMax`; views that belong together ([`RasterViews`]: a light's faces,
+//! a set of maps) are drawn by one dispatch pair. See raster.wgsl for why this is not the
+//! fixed-function rasteriser.
 
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
@@ -44,6 +46,7 @@ struct ViewUniform {
     limits: UVec4,
     params: Vec4,
     clip_plane: Vec4,
+    layer: UVec4,
 }
 
 /// Byte offsets of views that share one buffer are aligned to this (storage-binding offsets).
@@ -58,43 +61,74 @@ pub fn shared_view_bytes(size: (u32, u32)) -> u64 {
 const SMALL_TRIANGLE_PIXELS: u32 = 256;
 /// Workgroups per big triangle (each takes every `BIG_TILE_STRIDE`-th 16×16 tile).
 const BIG_TILE_STRIDE: u32 = 64;
-/// Big-triangle records per view; beyond that, triangles are drawn by their own thread.
+/// Big-triangle records per view (a set of views shares `views × BIG_CAPACITY`, at most four
+/// views' worth); beyond that, triangles are drawn by their own thread.
 const BIG_CAPACITY: u32 = 16384;
 /// Size of one `BigTriangle` in raster.wgsl.
 pub(crate) const BIG_RECORD_BYTES: u64 = 80;
 
-/// One rasterised view: its constants and its visibility target.
-pub struct RasterView {
-    uniform: ViewUniform,
-    uniform_buffer: wgpu::Buffer,
-    /// `width × height` packed `u64` texels, row-major, from byte `offset`.
+/// One view of a [`RasterViews`] set: what it sees, how, and where its texels go.
+#[derive(Clone, Copy, Debug)]
+pub struct ViewSpec {
+    /// (width, height) in texels.
+    pub size: (u32, u32),
+    /// Which triangles it draws.
+    pub casters: Casters,
+    /// The projection (a moving camera or light changes it with `set_clip_from_world`).
+    pub clip_from_world: Mat4,
+    /// Near-plane distance of a perspective projection (0 for orthographic ones).
+    pub near: f32,
+    /// Byte offset of its layer in the set's target (a multiple of 8).
+    pub offset: u64,
+}
+
+/// Views drawn together (the faces of a light's shadow map, the layers of reflective shadow
+/// maps): one clear, one thread per triangle and view, one shared list of big triangles. Each
+/// view writes `width × height` packed `u64` texels, row-major, from its byte offset in
+/// `target`.
+pub struct RasterViews {
+    uniforms: Vec<ViewUniform>,
+    entries: wgpu::Buffer,
+    /// The layers of every view.
     pub target: wgpu::Buffer,
-    offset: u64,
-    bytes: u64,
+    /// Bytes `start..end` of `target` that the views cover (cleared before drawing).
+    span: (u64, u64),
     args: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     args_group: wgpu::BindGroup,
-    /// Triangles the view draws (the scene's, or one instance's).
+    /// Most triangles any view draws.
     triangles: u32,
 }
 
-impl RasterView {
-    /// (width, height) in texels.
-    pub fn size(&self) -> (u32, u32) {
-        (self.uniform.size.x, self.uniform.size.y)
+impl RasterViews {
+    /// Number of views.
+    pub fn len(&self) -> usize {
+        self.uniforms.len()
+    }
+
+    /// Whether the set has no views.
+    pub fn is_empty(&self) -> bool {
+        self.uniforms.is_empty()
+    }
+
+    /// (width, height) in texels of view `i`.
+    pub fn size(&self, i: usize) -> (u32, u32) {
+        (self.uniforms[i].size.x, self.uniforms[i].size.y)
     }
 
     /// Draws only what lies on the positive side of the world-space `plane`
     /// (`dot(plane.xyz, p) + plane.w > 0`; `Vec4::W`, the default, keeps everything). Call
     /// before `set_clip_from_world`, which uploads both.
-    pub fn set_clip_plane(&mut self, plane: Vec4) {
-        self.uniform.clip_plane = plane;
+    pub fn set_clip_plane(&mut self, i: usize, plane: Vec4) {
+        self.uniforms[i].clip_plane = plane;
     }
 
-    /// Changes the projection (a moving camera or light); takes effect at the next frame.
-    pub fn set_clip_from_world(&mut self, queue: &wgpu::Queue, clip_from_world: Mat4) {
-        self.uniform.clip_from_world = clip_from_world;
-        queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&self.uniform));
+    /// Changes view `i`'s projection (a moving camera or light); takes effect at the next
+    /// frame.
+    pub fn set_clip_from_world(&mut self, queue: &wgpu::Queue, i: usize, clip_from_world: Mat4) {
+        self.uniforms[i].clip_from_world = clip_from_world;
+        let at = (i * std::mem::size_of::<ViewUniform>()) as u64;
+        queue.write_buffer(&self.entries, at, bytemuck::bytes_of(&self.uniforms[i]));
     }
 }
 
@@ -118,7 +152,7 @@ impl Rasterizer {
             device,
             "raster/layout",
             &[
-                bind::uniform(0, cs),
+                bind::storage(0, cs),
                 bind::storage(1, cs),
                 bind::storage(2, cs),
                 bind::storage(3, cs),
@@ -159,11 +193,9 @@ impl Rasterizer {
         }
     }
 
-    /// A view of `size` texels seeing `casters` through `clip_from_world`; `near` is the
-    /// near-plane distance of a perspective projection (0 for orthographic ones). The view
-    /// writes into `target` at the given byte offset (a layer of a shared array), or into a
-    /// buffer of its own.
-    #[allow(clippy::too_many_arguments, reason = "a view is these seven facts")]
+    /// One view of `size` texels seeing `casters` through `clip_from_world` (`near`: see
+    /// [`ViewSpec`]) into a target of its own.
+    #[allow(clippy::too_many_arguments, reason = "a view is these facts")]
     pub fn view(
         &self,
         ctx: &GpuContext,
@@ -173,29 +205,56 @@ impl Rasterizer {
         casters: Casters,
         clip_from_world: Mat4,
         near: f32,
-        target: Option<(&wgpu::Buffer, u64)>,
-    ) -> RasterView {
+    ) -> RasterViews {
+        let spec = ViewSpec { size, casters, clip_from_world, near, offset: 0 };
+        self.views(ctx, geometry, label, None, &[spec])
+    }
+
+    /// Views drawn together into `target` at their offsets, or into a buffer of their own
+    /// that holds them all.
+    pub fn views(
+        &self,
+        ctx: &GpuContext,
+        geometry: &Geometry,
+        label: &str,
+        target: Option<&wgpu::Buffer>,
+        specs: &[ViewSpec],
+    ) -> RasterViews {
         let device = &ctx.device;
-        // (filter, first triangle, triangle count, keep the farthest)
         let all = self.triangle_count;
-        let (filter, first, triangles, farthest) = match casters {
-            Casters::All => (0, 0, all, 0.0),
-            Casters::Only(Realness::Real) => (1, 0, all, 0.0),
-            Casters::Only(Realness::Virtual) => (2, 0, all, 0.0),
-            Casters::Range { first, count } => (0, first, count, 0.0),
-            Casters::FarthestOf { first, count } => (0, first, count, 1.0),
-        };
-        let uniform = ViewUniform {
-            clip_from_world,
-            size: UVec4::new(size.0, size.1, filter, first + triangles),
-            limits: UVec4::new(BIG_CAPACITY, SMALL_TRIANGLE_PIXELS, BIG_TILE_STRIDE, first),
-            params: Vec4::new(near, farthest, 0.0, 0.0),
-            clip_plane: Vec4::W,
-        };
-        let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(&format!("{label}/view")),
-            contents: bytemuck::bytes_of(&uniform),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        let capacity = BIG_CAPACITY * (specs.len() as u32).clamp(1, 4);
+        let mut span = (u64::MAX, 0);
+        let uniforms: Vec<ViewUniform> = specs
+            .iter()
+            .map(|spec| {
+                // (filter, first triangle, triangle count, keep the farthest)
+                let (filter, first, triangles, farthest) = match spec.casters {
+                    Casters::All => (0, 0, all, 0.0),
+                    Casters::Only(Realness::Real) => (1, 0, all, 0.0),
+                    Casters::Only(Realness::Virtual) => (2, 0, all, 0.0),
+                    Casters::Range { first, count } => (0, first, count, 0.0),
+                    Casters::FarthestOf { first, count } => (0, first, count, 1.0),
+                };
+                let bytes = spec.size.0 as u64 * spec.size.1 as u64 * 8;
+                span = (span.0.min(spec.offset), span.1.max(spec.offset + bytes));
+                ViewUniform {
+                    clip_from_world: spec.clip_from_world,
+                    size: UVec4::new(spec.size.0, spec.size.1, filter, first + triangles),
+                    limits: UVec4::new(capacity, SMALL_TRIANGLE_PIXELS, BIG_TILE_STRIDE, first),
+                    params: Vec4::new(spec.near, farthest, 0.0, 0.0),
+                    clip_plane: Vec4::W,
+                    layer: UVec4::new((spec.offset / 8) as u32, 0, 0, 0),
+                }
+            })
+            .collect();
+        let span = if uniforms.is_empty() { (0, 0) } else { span };
+        let triangles = uniforms.iter().map(|u| u.size.w - u.limits.w).max().unwrap_or(0);
+        let mut entries_contents = uniforms.clone();
+        entries_contents.resize(uniforms.len().max(1), ViewUniform::zeroed());
+        let entries = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&format!("{label}/views")),
+            contents: bytemuck::cast_slice(&entries_contents),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
         let buffer = |name: &str, size: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
@@ -206,53 +265,51 @@ impl Rasterizer {
             })
         };
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-        let bytes = size.0 as u64 * size.1 as u64 * 8;
-        let (target, offset) = match target {
-            Some((buffer, offset)) => (buffer.clone(), offset),
-            None => (buffer("target", bytes, storage | wgpu::BufferUsages::COPY_SRC), 0),
+        let target = match target {
+            Some(buffer) => buffer.clone(),
+            None => buffer("target", span.1.max(8), storage | wgpu::BufferUsages::COPY_SRC),
         };
-        let big = buffer("big_triangles", BIG_CAPACITY as u64 * BIG_RECORD_BYTES, storage);
+        let big = buffer("big_triangles", capacity as u64 * BIG_RECORD_BYTES, storage);
         let args = buffer("big_args", 12, storage | wgpu::BufferUsages::INDIRECT);
         let bind_group = bind::group(
             device,
             &format!("{label}/bind_group"),
             &self.layout,
             &[
-                uniform_buffer.as_entire_binding(),
+                entries.as_entire_binding(),
                 geometry.instances.as_entire_binding(),
                 geometry.vertices.as_entire_binding(),
                 geometry.indices.as_entire_binding(),
                 geometry.triangles.as_entire_binding(),
-                wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &target,
-                    offset,
-                    size: wgpu::BufferSize::new(bytes),
-                }),
+                target.as_entire_binding(),
                 big.as_entire_binding(),
             ],
         );
         let args_group =
             bind::group(device, &format!("{label}/args_group"), &self.args_layout, &[args.as_entire_binding()]);
-        RasterView { uniform, uniform_buffer, target, offset, bytes, args, bind_group, args_group, triangles }
+        RasterViews { uniforms, entries, target, span, args, bind_group, args_group, triangles }
     }
 
-    /// Clears and rasterises `views`, timed as one pass named `label`.
-    pub fn record<'a>(&self, rec: &mut Recorder, label: &str, views: impl IntoIterator<Item = &'a RasterView> + Clone) {
-        for v in views.clone() {
-            rec.encoder.clear_buffer(&v.target, v.offset, Some(v.bytes));
-            rec.encoder.copy_buffer_to_buffer(&self.args_init, 0, &v.args, 0, 12);
+    /// Clears and rasterises every view of `sets`, timed as one pass named `label`.
+    pub fn record<'a>(&self, rec: &mut Recorder, label: &str, sets: impl IntoIterator<Item = &'a RasterViews>) {
+        let sets: Vec<&RasterViews> = sets.into_iter().filter(|s| !s.is_empty()).collect();
+        for s in &sets {
+            rec.encoder.clear_buffer(&s.target, s.span.0, Some(s.span.1 - s.span.0));
+            rec.encoder.copy_buffer_to_buffer(&self.args_init, 0, &s.args, 0, 12);
         }
         rec.compute(label, |pass| {
             pass.set_pipeline(&self.small);
-            for v in views.clone() {
-                pass.set_bind_group(0, &v.bind_group, &[]);
-                pass.set_bind_group(1, &v.args_group, &[]);
-                mrshade_gpu::shader::dispatch_linear(pass, v.triangles.max(1), 64);
+            for s in &sets {
+                pass.set_bind_group(0, &s.bind_group, &[]);
+                pass.set_bind_group(1, &s.args_group, &[]);
+                let groups = s.triangles.max(1).div_ceil(64);
+                let max = mrshade_gpu::shader::MAX_WORKGROUPS_PER_DIMENSION;
+                pass.dispatch_workgroups(groups.min(max), groups.div_ceil(max), s.len() as u32);
             }
             pass.set_pipeline(&self.big);
-            for v in views {
-                pass.set_bind_group(0, &v.bind_group, &[]);
-                pass.dispatch_workgroups_indirect(&v.args, 0);
+            for s in &sets {
+                pass.set_bind_group(0, &s.bind_group, &[]);
+                pass.dispatch_workgroups_indirect(&s.args, 0);
             }
         });
     }

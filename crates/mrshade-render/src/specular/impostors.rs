@@ -9,7 +9,7 @@
 //! the whole world and the real-only one), after the pairs' slices, at the frame's size.
 
 use super::planar::{self, Reflector};
-use crate::raster::{Casters, RasterView, Rasterizer, VIEW_ALIGN, shared_view_bytes};
+use crate::raster::{Casters, RasterViews, Rasterizer, VIEW_ALIGN, ViewSpec, shared_view_bytes};
 use crate::scene_gpu::Geometry;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
@@ -64,7 +64,7 @@ pub struct Impostors {
     intersection: Intersection,
     resolution: u32,
     /// One per slice.
-    views: Vec<RasterView>,
+    views: RasterViews,
     /// `GpuImpostor` per slice.
     pub table: wgpu::Buffer,
     /// Visibility texels of every slice, `resolution²` each.
@@ -76,7 +76,7 @@ pub struct Impostors {
     /// The flat reflectors and the first of their views (index into `planar_views`).
     reflectors: Vec<(Reflector, usize)>,
     /// The mirrored cameras' views, in table order after the pairs' slices.
-    planar_views: Vec<RasterView>,
+    planar_views: RasterViews,
     /// Per instance: its planar views' slices (whole world, real-only), or `u32::MAX`.
     pub planar_slices: Vec<[u32; 2]>,
     /// The camera the planar views were drawn for (`None`: not yet, or a reflector moved).
@@ -120,53 +120,43 @@ impl Impostors {
             mapped_at_creation: false,
         });
         let gpu = impostor_table(geometry, &pairs, settings.intersection, resolution);
-        let views = gpu
+        let specs: Vec<ViewSpec> = gpu
             .iter()
             .enumerate()
             .map(|(k, imp)| {
                 let (_, first, count) = geometry.instance_triangles(imp.info.x as usize);
-                rasterizer.view(
-                    ctx,
-                    geometry,
-                    &format!("specular/impostor_{k}"),
-                    (resolution, resolution),
-                    Casters::Range { first, count },
-                    imp.clip_from_world,
-                    cube_near(imp),
-                    Some((&texels, k as u64 * slice * 8)),
-                )
+                ViewSpec {
+                    size: (resolution, resolution),
+                    casters: Casters::Range { first, count },
+                    clip_from_world: imp.clip_from_world,
+                    near: cube_near(imp),
+                    offset: k as u64 * slice * 8,
+                }
             })
             .collect();
+        let views = rasterizer.views(ctx, geometry, "specular/impostors", Some(&texels), &specs);
         // The planar views: the mirrored cameras are set each frame (`update_planar`).
         let first_planar = gpu.len() as u32;
-        let mut planar_views = Vec::new();
+        let mut planar_specs = Vec::new();
         let mut planar_slices = vec![[u32::MAX; 2]; n];
         let mut planar_table = Vec::new();
         let mut placed = Vec::new();
         for r in reflectors {
-            placed.push((*r, planar_views.len()));
+            placed.push((*r, planar_specs.len()));
             let worlds: &[(Casters, usize)] =
                 if r.real { &[(Casters::All, 0), (Casters::Only(Realness::Real), 1)] } else { &[(Casters::All, 0)] };
             for &(casters, k) in worlds {
-                let index = planar_views.len() as u64;
+                let index = planar_specs.len() as u64;
                 let offset = pair_bytes + index * view_bytes;
                 planar_slices[r.instance][k] = first_planar + index as u32;
                 planar_table.push(GpuImpostor {
                     info: UVec4::new(r.instance as u32, (offset / 8) as u32, size.0, size.1),
                     ..GpuImpostor::zeroed()
                 });
-                planar_views.push(rasterizer.view(
-                    ctx,
-                    geometry,
-                    &format!("specular/planar_{}_{k}", r.instance),
-                    size,
-                    casters,
-                    Mat4::IDENTITY,
-                    near,
-                    Some((&texels, offset)),
-                ));
+                planar_specs.push(ViewSpec { size, casters, clip_from_world: Mat4::IDENTITY, near, offset });
             }
         }
+        let planar_views = rasterizer.views(ctx, geometry, "specular/planar", Some(&texels), &planar_specs);
         let mut all = gpu;
         all.extend(planar_table);
         let table = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -209,9 +199,8 @@ impl Impostors {
             let margin = 1e-4 * (hi - lo).length();
             let (mirrored, clip_plane) = planar::mirrored_view(clip_from_world, eye, plane, margin);
             for k in 0..r.views() as usize {
-                let view = &mut self.planar_views[first_view + k];
-                view.set_clip_plane(clip_plane);
-                view.set_clip_from_world(queue, mirrored);
+                self.planar_views.set_clip_plane(first_view + k, clip_plane);
+                self.planar_views.set_clip_from_world(queue, first_view + k, mirrored);
                 // clip_from_world and, after info, the clip plane in `eye`.
                 let record = (first_slice + (first_view + k) as u64) * record_bytes;
                 queue.write_buffer(&self.table, record, bytemuck::bytes_of(&mirrored));
@@ -228,8 +217,8 @@ impl Impostors {
         }
         self.stale = true;
         let gpu = impostor_table(geometry, &self.pairs, self.intersection, self.resolution);
-        for (view, imp) in self.views.iter_mut().zip(&gpu) {
-            view.set_clip_from_world(queue, imp.clip_from_world);
+        for (i, imp) in gpu.iter().enumerate().take(self.views.len()) {
+            self.views.set_clip_from_world(queue, i, imp.clip_from_world);
         }
         if !gpu.is_empty() {
             queue.write_buffer(&self.table, 0, bytemuck::cast_slice(&gpu));
@@ -239,11 +228,11 @@ impl Impostors {
     /// Rasterises every slice when they are stale.
     pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         if self.stale && !self.views.is_empty() {
-            rasterizer.record(rec, "specular/impostors", &self.views);
+            rasterizer.record(rec, "specular/impostors", [&self.views]);
         }
         self.stale = false;
         if self.planar_stale {
-            rasterizer.record(rec, "specular/planar", &self.planar_views);
+            rasterizer.record(rec, "specular/planar", [&self.planar_views]);
         }
         self.planar_stale = false;
     }

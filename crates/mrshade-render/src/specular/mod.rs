@@ -24,7 +24,7 @@ pub mod temporal;
 use crate::methods::PointLight;
 use crate::passes::direct::ShadowParams;
 use crate::passes::gbuffer::GBuffer;
-use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::raster::{Casters, RasterViews, Rasterizer, ViewSpec};
 use crate::scene_gpu::{GpuProbe, GpuScene};
 use crate::uniforms::FrameUniforms;
 use bytemuck::{Pod, Zeroable};
@@ -101,9 +101,9 @@ pub struct SpecularInputs<'a> {
 pub struct SpecularStage {
     impostors: Impostors,
     interiors: Interiors,
-    /// The camera's view of real geometry only, then the farthest surface of each
+    /// The camera's view of real geometry only, and of the farthest surface of each
     /// transmissive traced instance.
-    camera_views: Vec<RasterView>,
+    camera_views: [RasterViews; 2],
     /// The camera the views were last set to, and whether they must be drawn again.
     camera_views_clip: Option<Mat4>,
     camera_views_stale: bool,
@@ -175,16 +175,9 @@ impl SpecularStage {
             mapped_at_creation: false,
         });
         let raster = inputs.rasterizer;
-        let mut camera_views = vec![raster.view(
-            ctx,
-            geometry,
-            "specular/real_only",
-            size,
-            Casters::Only(Realness::Real),
-            clip,
-            near,
-            None,
-        )];
+        let real_only =
+            raster.view(ctx, geometry, "specular/real_only", size, Casters::Only(Realness::Real), clip, near);
+        let mut farthest_specs = Vec::new();
         // Per instance (`Owner` in tracing.wgsl): its slices, farthest-surface view and BVH
         // flag; its planar views.
         let mut owners: Vec<[UVec4; 2]> = impostors
@@ -197,20 +190,12 @@ impl SpecularStage {
             .collect();
         for (k, &i) in transmissive.iter().enumerate() {
             let (_, first, count) = geometry.instance_triangles(i);
-            let label = format!("specular/farthest_{i}");
-            let target = Some((&farthest, k as u64 * view_bytes));
-            camera_views.push(raster.view(
-                ctx,
-                geometry,
-                &label,
-                size,
-                Casters::FarthestOf { first, count },
-                clip,
-                near,
-                target,
-            ));
+            let casters = Casters::FarthestOf { first, count };
+            farthest_specs.push(ViewSpec { size, casters, clip_from_world: clip, near, offset: k as u64 * view_bytes });
             owners[i][0].z = (k as u64 * view_bytes / 8) as u32;
         }
+        let farthest_views = raster.views(ctx, geometry, "specular/farthest", Some(&farthest), &farthest_specs);
+        let camera_views = [real_only, farthest_views];
         if settings.refraction == Refraction::Traced {
             for owner in &mut owners {
                 owner[0].w = 1;
@@ -520,8 +505,10 @@ impl SpecularStage {
         if geometry.moved() || self.camera_views_clip != Some(clip_from_world) {
             self.camera_views_clip = Some(clip_from_world);
             self.camera_views_stale = true;
-            for view in &mut self.camera_views {
-                view.set_clip_from_world(queue, clip_from_world);
+            for views in &mut self.camera_views {
+                for i in 0..views.len() {
+                    views.set_clip_from_world(queue, i, clip_from_world);
+                }
             }
         }
     }

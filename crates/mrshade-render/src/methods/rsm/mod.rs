@@ -4,7 +4,7 @@
 //! Real lights keep a real-only and a virtual-only RSM; so do virtual ones here (their
 //! union is the single RSM of the thesis, and the split costs nothing extra).
 
-use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::raster::{Casters, RasterViews, Rasterizer, ViewSpec};
 use crate::scene_gpu::{GpuScene, ShadowLayer};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
@@ -24,7 +24,7 @@ struct RsmParams {
 
 /// The RSM of every light layer, with importance pyramids.
 pub struct RsmPass {
-    views: Vec<RasterView>,
+    views: RasterViews,
     resolve: wgpu::ComputePipeline,
     resolve_groups: [wgpu::BindGroup; 2],
     base: wgpu::ComputePipeline,
@@ -76,22 +76,18 @@ impl RsmPass {
             })
         };
         let visibility = buffer("rsm/visibility", count * texel_count * 8);
-        let views = layers
+        let specs: Vec<ViewSpec> = layers
             .iter()
             .enumerate()
-            .map(|(i, layer)| {
-                rasterizer.view(
-                    ctx,
-                    &scene.geometry,
-                    &format!("rsm/layer{i}"),
-                    (res, res),
-                    Casters::Only(layer.casters),
-                    layer.clip_from_world,
-                    layer.near,
-                    Some((&visibility, i as u64 * texel_count * 8)),
-                )
+            .map(|(i, layer)| ViewSpec {
+                size: (res, res),
+                casters: Casters::Only(layer.casters),
+                clip_from_world: layer.clip_from_world,
+                near: layer.near,
+                offset: i as u64 * texel_count * 8,
             })
             .collect();
+        let views = rasterizer.views(ctx, &scene.geometry, "rsm", Some(&visibility), &specs);
         let levels = res.ilog2() + 1;
         let pyramid_stride: u32 = (0..levels).map(|l| (res >> l) * (res >> l)).sum();
         let texels = buffer("rsm/texels", count * texel_count * TEXEL_BYTES);
@@ -228,8 +224,8 @@ impl RsmPass {
 
     /// Moves the layers' projections to `layers` (moving lights); the next frame draws them.
     pub fn set_layers(&mut self, queue: &wgpu::Queue, layers: &[ShadowLayer]) {
-        for (view, layer) in self.views.iter_mut().zip(layers) {
-            view.set_clip_from_world(queue, layer.clip_from_world);
+        for (i, layer) in layers.iter().enumerate().take(self.views.len()) {
+            self.views.set_clip_from_world(queue, i, layer.clip_from_world);
         }
         let world_from_clip: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world.inverse()).collect();
         if !world_from_clip.is_empty() {
@@ -242,7 +238,7 @@ impl RsmPass {
         if self.views.is_empty() {
             return;
         }
-        rasterizer.record(rec, Self::RASTER_LABEL, &self.views);
+        rasterizer.record(rec, Self::RASTER_LABEL, [&self.views]);
         let groups = self.resolution.div_ceil(8);
         rec.compute(Self::LABEL, |pass| {
             pass.set_pipeline(&self.resolve);

@@ -2,7 +2,7 @@
 //! then a compute resolve into depth and motion, albedo/metallic, normal/roughness, specular
 //! (dielectric F0/F90), emission/occlusion and a flag word (covered, real, material index).
 
-use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::raster::{Casters, RasterViews, Rasterizer};
 use crate::scene_gpu::{Geometry, GpuMaterials};
 use crate::uniforms::FrameUniforms;
 use mrshade_gpu::timing::Recorder;
@@ -67,7 +67,7 @@ impl GBuffer {
 /// Visibility raster and resolve of the camera view.
 pub struct GBufferPass {
     /// The camera's visibility buffer.
-    pub camera: RasterView,
+    pub camera: RasterViews,
     pipeline: wgpu::ComputePipeline,
     groups: [wgpu::BindGroup; 3],
     size: (u32, u32),
@@ -99,7 +99,6 @@ impl GBufferPass {
             Casters::All,
             uniforms.clip_from_world,
             uniforms.exposure_env.z,
-            None,
         );
         let cs = wgpu::ShaderStages::COMPUTE;
         let scene_layout = bind::layout(

@@ -4,7 +4,7 @@
 //! maps depend on the geometry and the lights only: they are drawn again when either changed,
 //! not for a camera that moves through a still scene.
 
-use crate::raster::{Casters, RasterView, Rasterizer};
+use crate::raster::{Casters, RasterViews, Rasterizer, ViewSpec};
 use crate::scene_gpu::{Geometry, ShadowLayer};
 use mrshade_core::settings::ShadowSettings;
 use mrshade_gpu::GpuContext;
@@ -12,7 +12,7 @@ use mrshade_gpu::timing::Recorder;
 
 /// The shadow pass and the maps it owns.
 pub struct ShadowPass {
-    views: Vec<RasterView>,
+    views: RasterViews,
     /// All layers of all lights: `layers × resolution²` packed `u64` texels (reversed depth in
     /// the high word).
     pub maps: wgpu::Buffer,
@@ -40,29 +40,25 @@ impl ShadowPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let views = layers
+        let specs: Vec<ViewSpec> = layers
             .iter()
             .enumerate()
-            .map(|(i, layer)| {
-                rasterizer.view(
-                    ctx,
-                    geometry,
-                    &format!("shadows/layer{i}"),
-                    (res, res),
-                    Casters::Only(layer.casters),
-                    layer.clip_from_world,
-                    layer.near,
-                    Some((&maps, i as u64 * layer_bytes)),
-                )
+            .map(|(i, layer)| ViewSpec {
+                size: (res, res),
+                casters: Casters::Only(layer.casters),
+                clip_from_world: layer.clip_from_world,
+                near: layer.near,
+                offset: i as u64 * layer_bytes,
             })
             .collect();
+        let views = rasterizer.views(ctx, geometry, "shadows", Some(&maps), &specs);
         Self { views, maps, stale: true }
     }
 
     /// Moves the layers' projections to `layers` (moving lights); the next frame draws them.
     pub fn set_layers(&mut self, queue: &wgpu::Queue, layers: &[ShadowLayer]) {
-        for (view, layer) in self.views.iter_mut().zip(layers) {
-            view.set_clip_from_world(queue, layer.clip_from_world);
+        for (i, layer) in layers.iter().enumerate().take(self.views.len()) {
+            self.views.set_clip_from_world(queue, i, layer.clip_from_world);
         }
         self.stale = true;
     }
@@ -75,7 +71,7 @@ impl ShadowPass {
     /// Rasterises every layer's casters, if they changed since the last time.
     pub fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         if self.stale && !self.views.is_empty() {
-            rasterizer.record(rec, Self::LABEL, &self.views);
+            rasterizer.record(rec, Self::LABEL, [&self.views]);
         }
         self.stale = false;
     }
