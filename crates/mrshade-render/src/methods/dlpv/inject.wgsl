@@ -90,19 +90,19 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         }
         return;
     }
+    // V_ρ's real VPLs are V_μ's but for those a virtual surface hides: V_ρ's slot holds only
+    // that difference, and the seed adds V_μ to it (half the atomics of injecting every
+    // texel twice; the same sum).
     if (real_hit) {
         splat(SOURCE_MU, vpl_position(real), vpl(real));
     }
-    if (!virtual_nearer) {
-        if (real_hit) {
-            splat(SOURCE_RHO, vpl_position(real), vpl(real));
-        }
-        return;
-    }
+    if (!virtual_nearer) { return; }
     splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
     if (!real_hit) { return; }
     let r = vpl(real);
-    splat(SOURCE_INDIRECT, vpl_position(real), array<vec4f, 3>(-r[0], -r[1], -r[2]));
+    let hidden = array<vec4f, 3>(-r[0], -r[1], -r[2]);
+    splat(SOURCE_INDIRECT, vpl_position(real), hidden);
+    splat(SOURCE_RHO, vpl_position(real), hidden);
     if (pair.w == 1u) {
         // Lobe along the light (a direction, as SH of a delta), scaled so that the query on
         // this surface returns the irradiance taken away (the L1 projection of a delta

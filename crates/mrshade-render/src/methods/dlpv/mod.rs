@@ -431,7 +431,7 @@ impl LightTransport for DlpvMethod {
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         if std::mem::take(&mut self.stale) {
             for set in &self.sets {
-                set.rsm.record(rec, rasterizer);
+                set.rsm.record_maps(rec, rasterizer, false);
             }
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);

@@ -37,12 +37,14 @@ fn sources_of(v: u32) -> u32 {
     }
 }
 
-// +x, −x, +y, −y, +z, −z.
-fn axis(i: u32) -> vec3i {
-    var v = vec3i(0);
-    v[i / 2u] = select(1, -1, (i & 1u) == 1u);
-    return v;
-}
+// The three axes.
+const AXES = array<vec3f, 3>(vec3f(1.0, 0.0, 0.0), vec3f(0.0, 1.0, 0.0), vec3f(0.0, 0.0, 1.0));
+// A side face's centre seen from the neighbour's centre: (flow + ½·face) / |…| = 0.894·flow
+// + 0.447·face.
+const SIDE_ALONG: f32 = 0.8944272;
+const SIDE_ACROSS: f32 = 0.4472136;
+// The clamped-cosine lobe of a face, over π: (Y0, ⅔·Y1·face) (sh4_clamped_cosine / π).
+const LOBE_BAND1: f32 = 0.6666667 * SH_Y1;
 
 fn cell_of(id: u32) -> vec3i {
     let res = params.info.x;
@@ -53,28 +55,55 @@ fn at(source_or_volume: u32, ch: u32, cell: u32) -> u32 {
     return (source_or_volume * 3u + ch) * cells() + cell;
 }
 
+// What one face of the receiving cell passes on, with normal `face` (a signed axis), for
+// flux `flux` through it: its lobe times the flux, as (Σ flux, Σ flux·face) (the lobe's
+// bands 0 and 1 up to constant factors, applied once in gather_from).
+fn add_face(flux: f32, face: vec3f, clamp_negative: bool, sum: ptr<function, vec4f>) {
+    let f = select(flux, max(flux, 0.0), clamp_negative);
+    *sum += vec4f(f, f * face);
+}
+
 // The light of source `s`, channel `ch`, that the neighbours send into `cell` in one step.
+// Each neighbour's intensity toward a face centre is Y0·c0 + Y1·⟨(c3, c1, c2), ω⟩; with
+// ω = flow (the far face) or 0.894·flow + 0.447·face (a side face) it needs no normalising:
+// 30 faces of dot products of axes, not 30 normalised directions and SH evaluations (the
+// step took 39 µs at 32³ on an H200, its arithmetic rather than its memory).
 fn gather_from(s: u32, ch: u32, cell: vec3i) -> vec4f {
     let clamp_negative = s == SOURCE_RHO || s == SOURCE_MU;
-    var gathered = vec4f(0.0);
-    for (var a = 0u; a < 6u; a++) {
-        // Light flowing along `flow` from the neighbour behind.
-        let flow = axis(a);
-        let from_cell = cell - flow;
-        if (!cell_inside(from_cell)) { continue; }
-        let sender = source[at(s, ch, cell_index(from_cell))];
-        for (var f = 0u; f < 6u; f++) {
-            let face = axis(f);
-            if (all(face == -flow)) { continue; }
-            let is_far = all(face == flow);
-            let to_face = normalize(vec3f(flow) + select(0.5 * vec3f(face), vec3f(0.0), is_far));
-            let solid_angle = select(SIDE_FACE_SOLID_ANGLE, FAR_FACE_SOLID_ANGLE, is_far);
-            var flux = solid_angle * dot(sender, sh4(to_face));
-            if (clamp_negative) { flux = max(flux, 0.0); }
-            gathered += flux * sh4_clamped_cosine(vec3f(face)) / PI;
+    // (Σ flux, Σ flux·face) over the faces, then the lobe's constants.
+    var sum = vec4f(0.0);
+    for (var i = 0u; i < 3u; i++) {
+        let axis = AXES[i];
+        let across_a = AXES[(i + 1u) % 3u];
+        let across_b = AXES[(i + 2u) % 3u];
+        for (var k = 0u; k < 2u; k++) {
+            // Light flowing along `flow` from the neighbour behind.
+            let flow = select(axis, -axis, k == 1u);
+            let from_cell = cell - vec3i(flow);
+            if (!cell_inside(from_cell)) { continue; }
+            let c = source[at(s, ch, cell_index(from_cell))];
+            let band1 = SH_Y1 * vec3f(c.w, c.y, c.z);
+            let base = SH_Y0 * c.x;
+            let along = dot(band1, flow);
+            add_face(FAR_FACE_SOLID_ANGLE * (base + along), flow, clamp_negative, &sum);
+            let side = base + SIDE_ALONG * along;
+            let a = SIDE_ACROSS * dot(band1, across_a);
+            let b = SIDE_ACROSS * dot(band1, across_b);
+            add_face(SIDE_FACE_SOLID_ANGLE * (side + a), across_a, clamp_negative, &sum);
+            add_face(SIDE_FACE_SOLID_ANGLE * (side - a), -across_a, clamp_negative, &sum);
+            add_face(SIDE_FACE_SOLID_ANGLE * (side + b), across_b, clamp_negative, &sum);
+            add_face(SIDE_FACE_SOLID_ANGLE * (side - b), -across_b, clamp_negative, &sum);
         }
     }
-    return gathered;
+    // SH order (Y0, y, z, x).
+    return vec4f(SH_Y0 * sum.x, LOBE_BAND1 * vec3f(sum.z, sum.w, sum.y));
+}
+
+// The injected coefficients of source `s`, channel `ch`, in `cell`.
+fn injected_at(s: u32, ch: u32, cell: u32) -> vec4f {
+    let word = at(s, ch, cell) * 4u;
+    let q = vec4i(injected[word], injected[word + 1u], injected[word + 2u], injected[word + 3u]);
+    return vec4f(q) / params.scale.x;
 }
 
 // One invocation per cell (x) and accumulated volume × channel (y: 3·v + ch): a cell's work
@@ -88,8 +117,9 @@ fn seed(@builtin(global_invocation_id) id: vec3u) {
     var added = vec4f(0.0);
     for (var s = 0u; s < SOURCES; s++) {
         if ((sources_of(v) & (1u << s)) == 0u) { continue; }
-        let word = at(s, ch, cell) * 4u;
-        let c = vec4f(f32(injected[word]), f32(injected[word + 1u]), f32(injected[word + 2u]), f32(injected[word + 3u])) / params.scale.x;
+        var c = injected_at(s, ch, cell);
+        // V_ρ's slot holds what differs from V_μ (inject.wgsl).
+        if (s == SOURCE_RHO) { c += injected_at(SOURCE_MU, ch, cell); }
         destination[at(s, ch, cell)] = c;
         if (s == SOURCE_DIRECT) { added += c; }
     }

@@ -235,6 +235,13 @@ impl RsmPass {
 
     /// Rasterises, resolves and reduces every layer.
     pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        self.record_maps(rec, rasterizer, true);
+    }
+
+    /// Rasterises and resolves every layer, and reduces it into the flux pyramid if
+    /// `pyramid` (the VPL sampler's; injecting every texel needs none: ten tiny dispatches
+    /// per set of maps).
+    pub fn record_maps(&self, rec: &mut Recorder, rasterizer: &Rasterizer, pyramid: bool) {
         if self.views.is_empty() {
             return;
         }
@@ -245,6 +252,9 @@ impl RsmPass {
             pass.set_bind_group(0, &self.resolve_groups[0], &[]);
             pass.set_bind_group(1, &self.resolve_groups[1], &[]);
             pass.dispatch_workgroups(groups, groups, self.layers);
+            if !pyramid {
+                return;
+            }
             pass.set_pipeline(&self.base);
             pass.set_bind_group(0, &self.level_groups[0], &[]);
             pass.dispatch_workgroups(groups, groups, self.layers);
