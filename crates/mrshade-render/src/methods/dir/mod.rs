@@ -148,6 +148,8 @@ impl LightTransport for DirMethod {
         if let Some(layers) = change.moved_light_layers {
             self.rsm.set_layers(queue, layers);
         }
+        self.vpl.prepare(queue, self.frame, change.geometry);
+        self.ism_resources.prepare(queue, change.geometry.virtual_box());
         // Light in the world changes when geometry or a light moves; a moving camera only
         // reprojects the history (the temporal step's disocclusion tests handle what it
         // newly sees).
@@ -157,8 +159,6 @@ impl LightTransport for DirMethod {
         // do they change (a camera moving through a still scene keeps them).
         self.rsm_stale |= light_changed;
         self.still_frames = if light_changed || self.rendered == 0 { 0 } else { self.still_frames + 1 };
-        self.vpl.prepare(queue, self.frame, change.geometry, self.still_frames);
-        self.ism_resources.prepare(queue, change.geometry.virtual_box());
         let history = History {
             exists: self.rendered > 0,
             moved: light_changed,

@@ -63,7 +63,6 @@ fn distribute() {
     } else {
         for (var s = 0u; s < count; s++) {
             share[s] = select(1.0, sources[s].weight.x, params.modes.x == 1u);
-            if (sources[s].info.x == SOURCE_BOUNCE) { share[s] *= params.probe_scale.z; }
         }
     }
     total = 0.0;

@@ -7,8 +7,7 @@ struct VplParams {
     rsm: vec4u,
     // probe pyramid finest width, height, level count, 1 if there is a probe
     probe: vec4u,
-    // probe intensity, total importance, the multiple-bounce source's share factor (for the
-    // equal and weighted distributions), unused
+    // probe intensity, total importance, unused, unused
     probe_scale: vec4f,
     // scene bounding sphere: centre, radius
     scene: vec4f,

@@ -68,7 +68,7 @@ pub struct VplParams {
     pub rsm: UVec4,
     /// Probe pyramid width, height, levels, present.
     pub probe: UVec4,
-    /// Probe intensity, total importance, the multiple-bounce source's share factor.
+    /// Probe intensity, total importance.
     pub probe_scale: Vec4,
     /// Scene bounding sphere.
     pub scene: Vec4,
@@ -117,21 +117,6 @@ pub struct VplPass {
     groups: [[wgpu::BindGroup; 3]; 2],
     point_count: u32,
     real_count: u32,
-}
-
-/// The multiple-bounce source's share (times a primary source's) once the scene has kept
-/// still through the temporal filter's warm-up: it carries every bounce after the first, in
-/// a closed room more light than any light's first bounce, and at an equal share the lower
-/// faces of Cornell's blocks missed the light going back and forth with the floor. Twice the
-/// share, measured at 640×480 over 240/256/272 frames: region FLIP cornell 0.0875 → 0.0790,
-/// desk-bunny 0.0529 → 0.0493, desk-spot-real 0.0629 → 0.0619, desk-spot-virtual 0.0585 →
-/// 0.0586 (four times: 0.125 on cornell, bounce VPLs near the blocks sparkle). Not while
-/// anything moves: the source builds on the previous frame's VPLs, so its light lags behind a
-/// moving object (a cube's floor trail 1.39/255 at twice the share, −0.16 at an equal one).
-pub const STILL_BOUNCE_SHARE: f32 = 2.0;
-
-fn bounce_share(still_frames: u32) -> f32 {
-    if still_frames >= crate::methods::dir::filter::STILL_WARMUP_FRAMES { STILL_BOUNCE_SHARE } else { 1.0 }
 }
 
 impl VplPass {
@@ -388,12 +373,10 @@ impl VplPass {
         }
     }
 
-    /// Sets the frame index (Halton sequences continue from frame to frame), where the
-    /// virtual instances are, and the multiple-bounce source's share after `still_frames`
-    /// frames in which nothing moved.
-    pub fn prepare(&mut self, queue: &wgpu::Queue, frame: u32, geometry: &Geometry, still_frames: u32) {
+    /// Sets the frame index (Halton sequences continue from frame to frame) and where the
+    /// virtual instances are.
+    pub fn prepare(&mut self, queue: &wgpu::Queue, frame: u32, geometry: &Geometry) {
         self.params.counts.y = frame;
-        self.params.probe_scale.z = bounce_share(still_frames);
         let spheres = geometry.virtual_spheres();
         self.params.strata.x = spheres.len() as u32;
         if !spheres.is_empty() {
