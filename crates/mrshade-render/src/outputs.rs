@@ -143,6 +143,10 @@ impl Renderer {
         ]
         .into_iter()
         .chain(self.read_specular_aovs(ctx)?)
+        .chain(match self.method.indirect() {
+            Some(indirect) => indirect.aovs(ctx, exposure)?,
+            None => Vec::new(),
+        })
         .chain(self.method.read_aovs(
             ctx,
             &AovView {

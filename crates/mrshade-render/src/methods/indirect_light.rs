@@ -3,8 +3,10 @@
 //! computes indirect light fills one; the `dir` method's interleaved, history and merged
 //! buffers have the same layout.
 
-use mrshade_core::Differential;
-use mrshade_gpu::{Target, bind};
+use crate::outputs::{Aov, AovImage, read_rgba16f};
+use anyhow::Result;
+use mrshade_core::{Differential, HdrImage};
+use mrshade_gpu::{GpuContext, Target, bind};
 
 /// Format of the indirect buffers.
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -64,6 +66,54 @@ impl IndirectLight {
     pub fn size(&self) -> (u32, u32) {
         self.env_weight.size()
     }
+
+    /// The indirect light of both solutions (radiance).
+    pub fn read_light(&self, ctx: &GpuContext) -> Result<Differential<HdrImage>> {
+        Ok(Differential { rv: read_rgba16f(ctx, &self.light.rv)?, r: read_rgba16f(ctx, &self.light.r)? })
+    }
+
+    /// The probe's visibility ratios: per internal pixel and color channel, the share of the
+    /// probe's (cosine-weighted) light that reaches it in `L_rv` and in `L_r`.
+    pub fn read_probe_visibility(&self, ctx: &GpuContext) -> Result<Differential<Vec<[f32; 3]>>> {
+        let weight = read_rgba16f(ctx, &self.env_weight)?;
+        let ratio = |visible: &Target| -> Result<Vec<[f32; 3]>> {
+            let visible = read_rgba16f(ctx, visible)?;
+            Ok(visible.pixels.iter().zip(&weight.pixels).map(|(v, w)| visibility_ratio(v, w)).collect())
+        };
+        Ok(Differential { rv: ratio(&self.env.rv)?, r: ratio(&self.env.r)? })
+    }
+
+    /// The AOVs of every method that computes indirect light: `indirect_rv`, `indirect_r`
+    /// (camera values: radiance × `exposure`) and `probe_visibility_rv`, `_r` (the ratios as
+    /// 8-bit images), at the internal size.
+    pub fn aovs(&self, ctx: &GpuContext, exposure: f32) -> Result<Vec<Aov>> {
+        let (w, h) = self.size();
+        let visibility = self.read_probe_visibility(ctx)?;
+        let ratio_rgb = |v: &[[f32; 3]]| -> Vec<u8> {
+            v.iter().flat_map(|r| r.map(|c| (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)).collect()
+        };
+        let light = self.read_light(ctx)?;
+        let scaled =
+            |img: HdrImage| HdrImage { pixels: img.pixels.iter().map(|p| p.map(|c| c * exposure)).collect(), ..img };
+        Ok(vec![
+            Aov {
+                name: "probe_visibility_rv",
+                image: AovImage::Display { width: w, height: h, rgb: ratio_rgb(&visibility.rv) },
+            },
+            Aov {
+                name: "probe_visibility_r",
+                image: AovImage::Display { width: w, height: h, rgb: ratio_rgb(&visibility.r) },
+            },
+            Aov { name: "indirect_rv", image: AovImage::Linear(scaled(light.rv)) },
+            Aov { name: "indirect_r", image: AovImage::Linear(scaled(light.r)) },
+        ])
+    }
+}
+
+/// Σw_c·V / Σw_c per channel; 1 where no light of the probe was weighed at the pixel (as
+/// direct.wgsl).
+fn visibility_ratio(visible: &[f32; 3], weight: &[f32; 3]) -> [f32; 3] {
+    std::array::from_fn(|c| if weight[c] > 0.0 { visible[c] / weight[c] } else { 1.0 })
 }
 
 /// A method's light at any surface point, not only where the camera looks: what the

@@ -8,18 +8,14 @@ use crate::outputs::{Aov, AovImage, read_rgba16f};
 use crate::uniforms::image_point;
 use anyhow::Result;
 use mrshade_core::{Differential, HdrImage};
-use mrshade_gpu::{GpuContext, Target, readback};
+use mrshade_gpu::{GpuContext, readback};
 
 impl DirMethod {
-    /// The `dir` method's AOVs: VPLs over the image, the ISM atlases, the split and merged
-    /// indirect buffers and the probe's visibility ratio.
+    /// The `dir` method's own AOVs: VPLs over the image, the ISM atlases and the split
+    /// (interleaved) indirect buffer; the merged one and the probe's visibility are every
+    /// method's ([`IndirectLight::aovs`](crate::methods::IndirectLight::aovs)).
     pub(super) fn aovs(&self, ctx: &GpuContext, view: &AovView) -> Result<Vec<Aov>> {
-        let (iw, ih) = view.internal_size;
         let (exposure, composite) = (view.exposure, view.composite);
-        let visibility = self.read_probe_visibility(ctx)?;
-        let ratio_rgb = |v: &[[f32; 3]]| -> Vec<u8> {
-            v.iter().flat_map(|r| r.map(|c| (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)).collect()
-        };
         let vpls = self.read_vpls(ctx)?;
         let IsmDepths { side, depths, .. } = self.read_ism_depths(ctx)?;
         let far = 2.0 * self.ism_resources.params.scene.w;
@@ -46,44 +42,21 @@ impl DirMethod {
             Aov { name: "ism_real", image: atlas(&depths.r) },
             Aov { name: "ism_virtual", image: atlas(&depths.rv) },
             Aov {
-                name: "probe_visibility_rv",
-                image: AovImage::Display { width: iw, height: ih, rgb: ratio_rgb(&visibility.rv) },
-            },
-            Aov {
-                name: "probe_visibility_r",
-                image: AovImage::Display { width: iw, height: ih, rgb: ratio_rgb(&visibility.r) },
-            },
-            Aov {
                 name: "indirect_split_rv",
                 image: AovImage::Linear(scaled(read_rgba16f(ctx, &self.interleaved.light.rv)?)),
-            },
-            Aov {
-                name: "indirect_rv",
-                image: AovImage::Linear(scaled(read_rgba16f(ctx, &self.filter.merged.light.rv)?)),
-            },
-            Aov {
-                name: "indirect_r",
-                image: AovImage::Linear(scaled(read_rgba16f(ctx, &self.filter.merged.light.r)?)),
             },
         ])
     }
 
-    /// The probe's visibility ratios: per internal pixel and color channel, the share of the
-    /// probe's (cosine-weighted) light that reaches it in `L_rv` and in `L_r`.
+    /// The probe's visibility ratios of the merged buffers (see
+    /// [`IndirectLight::read_probe_visibility`](crate::methods::IndirectLight::read_probe_visibility)).
     pub fn read_probe_visibility(&self, ctx: &GpuContext) -> Result<Differential<Vec<[f32; 3]>>> {
-        let merged = &self.filter.merged;
-        let weight = read_rgba16f(ctx, &merged.env_weight)?;
-        let ratio = |visible: &Target| -> Result<Vec<[f32; 3]>> {
-            let visible = read_rgba16f(ctx, visible)?;
-            Ok(visible.pixels.iter().zip(&weight.pixels).map(|(v, w)| visibility_ratio(v, w)).collect())
-        };
-        Ok(Differential { rv: ratio(&merged.env.rv)?, r: ratio(&merged.env.r)? })
+        self.filter.merged.read_probe_visibility(ctx)
     }
 
     /// The merged, smoothed indirect light of both solutions (radiance).
     pub fn read_indirect(&self, ctx: &GpuContext) -> Result<Differential<HdrImage>> {
-        let m = &self.filter.merged.light;
-        Ok(Differential { rv: read_rgba16f(ctx, &m.rv)?, r: read_rgba16f(ctx, &m.r)? })
+        self.filter.merged.read_light(ctx)
     }
 
     /// The imperfect shadow maps.
@@ -135,11 +108,6 @@ fn vpl_overlay(vpls: &[GpuVpl], image: &HdrImage, clip_from_world: glam::Mat4) -
         }
     }
     rgb
-}
-
-/// Σw_c·V / Σw_c per channel; 1 where no environment VPL reached the pixel (as direct.wgsl).
-fn visibility_ratio(visible: &[f32; 3], weight: &[f32; 3]) -> [f32; 3] {
-    std::array::from_fn(|c| if weight[c] > 0.0 { visible[c] / weight[c] } else { 1.0 })
 }
 
 /// The VPLs as CSV, one row per used slot.
