@@ -139,6 +139,10 @@ pub struct DirSettings {
     pub filter: bool,
     /// Temporal smoothing.
     pub temporal: TemporalSettings,
+    /// Which VPLs the sampling sequences draw: renders with different seeds draw independent
+    /// VPLs (the sequences otherwise follow the frame index alone), so that a setting can be
+    /// scored over independent runs. Default 0.
+    pub seed: u32,
 }
 
 impl Default for DirSettings {
@@ -160,6 +164,7 @@ impl Default for DirSettings {
             ism_normal_offset: 1.0,
             filter: true,
             temporal: TemporalSettings::default(),
+            seed: 0,
         }
     }
 }

@@ -117,7 +117,12 @@ pub struct VplPass {
     groups: [[wgpu::BindGroup; 3]; 2],
     point_count: u32,
     real_count: u32,
+    /// `dir.seed`: where in the sampling sequences frame 0 starts.
+    seed: u32,
 }
+
+/// Frames of the sampling sequences between two seeds' starts.
+const SEED_STRIDE: u32 = 1 << 16;
 
 impl VplPass {
     /// GPU timing label.
@@ -370,13 +375,14 @@ impl VplPass {
             groups,
             point_count: ism.real_count + ism.virtual_count,
             real_count: ism.real_count,
+            seed: settings.seed,
         }
     }
 
     /// Sets the frame index (Halton sequences continue from frame to frame) and where the
     /// virtual instances are.
     pub fn prepare(&mut self, queue: &wgpu::Queue, frame: u32, geometry: &Geometry) {
-        self.params.counts.y = frame;
+        self.params.counts.y = frame.wrapping_add(self.seed.wrapping_mul(SEED_STRIDE));
         let spheres = geometry.virtual_spheres();
         self.params.strata.x = spheres.len() as u32;
         if !spheres.is_empty() {
