@@ -69,8 +69,12 @@ fn no_virtual_content_returns_the_photo() {
     }
 }
 
+/// With every object real `L_rv == L_r`; so are both solutions' indirect light and probe
+/// visibility, which every method that computes indirect light writes as AOVs
+/// (`IndirectLight::aovs`).
 #[test]
 fn with_every_object_real_l_rv_equals_l_r_exactly() {
+    use mrshade_render::outputs::AovImage;
     for method in Method::ALL {
         let toml = method_toml(*method);
         let (top, table) = toml.split_once('\n').unwrap();
@@ -78,6 +82,27 @@ fn with_every_object_real_l_rv_equals_l_r_exactly() {
         s.top_toml = format!("{top}\n");
         let r = s.render();
         assert_eq!(r.radiance.rv.pixels, r.radiance.r.pixels, "{}", method.name());
+        let aovs = r.renderer.read_aovs(&r.ctx).unwrap();
+        let find = |name: &str| aovs.iter().find(|a| a.name == name).map(|a| &a.image);
+        if *method == Method::Direct {
+            assert!(find("indirect_rv").is_none(), "direct computes no indirect light");
+            continue;
+        }
+        let pairs = [("indirect_rv", "indirect_r"), ("probe_visibility_rv", "probe_visibility_r")];
+        for (rv, r_name) in pairs {
+            let (a, b) = (find(rv), find(r_name));
+            let (Some(a), Some(b)) = (a, b) else { panic!("{}: no {rv} / {r_name} AOV", method.name()) };
+            match (a, b) {
+                (AovImage::Linear(a), AovImage::Linear(b)) => {
+                    assert_eq!(a.pixels, b.pixels, "{}: {rv} ≠ {r_name}", method.name());
+                    assert!(a.pixels.iter().any(|p| p.iter().any(|&c| c > 0.0)), "{}: {rv} is black", method.name());
+                }
+                (AovImage::Display { rgb: a, .. }, AovImage::Display { rgb: b, .. }) => {
+                    assert_eq!(a, b, "{}: {rv} ≠ {r_name}", method.name())
+                }
+                _ => panic!("{}: {rv} and {r_name} differ in kind", method.name()),
+            }
+        }
     }
 }
 
@@ -122,40 +147,5 @@ fn the_composite_is_the_documented_formula() {
             assert_eq!(composite.coverage[i], if is_virtual { 1.0 } else { 0.0 });
         }
         assert!(virtual_pixels > 10);
-    }
-}
-
-/// Every method that computes indirect light writes it and the probe's visibility as AOVs
-/// (`IndirectLight::aovs`), and with every object real both solutions' are the same.
-#[test]
-fn every_methods_indirect_light_aovs_agree_without_virtual_content() {
-    use mrshade_render::outputs::AovImage;
-    for method in Method::ALL {
-        let toml = method_toml(*method);
-        let (top, table) = toml.split_once('\n').unwrap();
-        let mut s = scene(true, true, table);
-        s.top_toml = format!("{top}\n");
-        let r = s.render();
-        let aovs = r.renderer.read_aovs(&r.ctx).unwrap();
-        let find = |name: &str| aovs.iter().find(|a| a.name == name).map(|a| &a.image);
-        if *method == Method::Direct {
-            assert!(find("indirect_rv").is_none(), "direct computes no indirect light");
-            continue;
-        }
-        let pairs = [("indirect_rv", "indirect_r"), ("probe_visibility_rv", "probe_visibility_r")];
-        for (rv, r_name) in pairs {
-            let (a, b) = (find(rv), find(r_name));
-            let (Some(a), Some(b)) = (a, b) else { panic!("{}: no {rv} / {r_name} AOV", method.name()) };
-            match (a, b) {
-                (AovImage::Linear(a), AovImage::Linear(b)) => {
-                    assert_eq!(a.pixels, b.pixels, "{}: {rv} ≠ {r_name}", method.name());
-                    assert!(a.pixels.iter().any(|p| p.iter().any(|&c| c > 0.0)), "{}: {rv} is black", method.name());
-                }
-                (AovImage::Display { rgb: a, .. }, AovImage::Display { rgb: b, .. }) => {
-                    assert_eq!(a, b, "{}: {rv} ≠ {r_name}", method.name())
-                }
-                _ => panic!("{}: {rv} and {r_name} differ in kind", method.name()),
-            }
-        }
     }
 }

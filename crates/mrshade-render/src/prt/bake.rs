@@ -71,6 +71,25 @@ mod tests {
     use super::*;
     use mrshade_core::sh::Sh9;
 
+    /// An untextured mesh of material 0.
+    fn primitive(name: &str, positions: Vec<Vec3>, normals: Vec<Vec3>, indices: Vec<u32>) -> Primitive {
+        Primitive {
+            name: name.into(),
+            uvs: vec![glam::Vec2::ZERO; positions.len()],
+            normals,
+            positions,
+            indices,
+            material: 0,
+            skin: Vec::new(),
+            targets: Vec::new(),
+        }
+    }
+
+    /// Σ c_i T_i: the irradiance the transfer `t` gives under `sh`.
+    fn shaded(sh: &Sh9, t: &[f32; 9]) -> Vec3 {
+        sh.0.iter().zip(t).map(|(c, t)| *c * *t).sum()
+    }
+
     /// A UV sphere of radius 1 with outward normals.
     fn sphere(rings: u32, segments: u32) -> Primitive {
         let mut positions = Vec::new();
@@ -89,16 +108,7 @@ mod tests {
                 indices.extend([a, b, a + 1, a + 1, b, b + 1]);
             }
         }
-        Primitive {
-            name: "sphere".into(),
-            normals: positions.clone(),
-            uvs: vec![glam::Vec2::ZERO; positions.len()],
-            positions,
-            indices,
-            material: 0,
-            skin: Vec::new(),
-            targets: Vec::new(),
-        }
+        primitive("sphere", positions.clone(), positions, indices)
     }
 
     fn probe() -> Sh9 {
@@ -117,7 +127,7 @@ mod tests {
         let transfer = bake(&sphere, 1024);
         let sh = probe();
         for (k, t) in transfer.iter().enumerate().step_by(17) {
-            let prt: Vec3 = sh.0.iter().zip(t).map(|(c, t)| *c * *t).sum();
+            let prt = shaded(&sh, t);
             let want = sh.irradiance(sphere.normals[k]);
             assert!((prt - want).abs().max_element() < 0.02 * want.max_element(), "vertex {k}: {prt} vs {want}");
         }
@@ -138,19 +148,11 @@ mod tests {
             // A floor triangle to the centre and the wall above the edge.
             indices.extend([0, base, base + 1, base, base + 1, base + 2, base, base + 2, base + 3]);
         }
-        let open_box = Primitive {
-            name: "open box".into(),
-            normals: vec![Vec3::Y; positions.len()],
-            uvs: vec![glam::Vec2::ZERO; positions.len()],
-            positions,
-            indices,
-            material: 0,
-            skin: Vec::new(),
-            targets: Vec::new(),
-        };
+        let normals = vec![Vec3::Y; positions.len()];
+        let open_box = primitive("open box", positions, normals, indices);
         let transfer = bake(&open_box, 1024);
         let sh = probe();
-        let prt: Vec3 = sh.0.iter().zip(&transfer[0]).map(|(c, t)| *c * *t).sum();
+        let prt = shaded(&sh, &transfer[0]);
         let open = sh.irradiance(Vec3::Y);
         assert!(prt.x < 0.6 * open.x && prt.x > 0.05 * open.x, "{prt} vs unoccluded {open}");
     }

@@ -5,7 +5,7 @@
 //! a set of maps) are drawn by one dispatch pair. See raster.wgsl for why this is not the
 //! fixed-function rasteriser.
 
-use crate::scene_gpu::Geometry;
+use crate::scene_gpu::{Geometry, ShadowLayer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec4};
 use mrshade_core::flags::Realness;
@@ -82,6 +82,25 @@ pub struct ViewSpec {
     pub offset: u64,
 }
 
+impl ViewSpec {
+    /// One square view of `resolution` texels per shadow layer (its casters and projection),
+    /// layer `i` at byte `i × resolution² × 8` of a shared target.
+    pub fn of_layers(layers: &[ShadowLayer], resolution: u32) -> Vec<ViewSpec> {
+        let layer_bytes = resolution as u64 * resolution as u64 * 8;
+        layers
+            .iter()
+            .enumerate()
+            .map(|(i, layer)| ViewSpec {
+                size: (resolution, resolution),
+                casters: Casters::Only(layer.casters),
+                clip_from_world: layer.clip_from_world,
+                near: layer.near,
+                offset: i as u64 * layer_bytes,
+            })
+            .collect()
+    }
+}
+
 /// Views drawn together (the faces of a light's shadow map, the layers of reflective shadow
 /// maps): one clear, one thread per triangle and view, one shared list of big triangles. Each
 /// view writes `width × height` packed `u64` texels, row-major, from its byte offset in
@@ -121,6 +140,17 @@ impl RasterViews {
     /// before `set_clip_from_world`, which uploads both.
     pub fn set_clip_plane(&mut self, i: usize, plane: Vec4) {
         self.uniforms[i].clip_plane = plane;
+    }
+
+    /// Moves the views made by [`ViewSpec::of_layers`] to their layers' projections (moving
+    /// lights), in one upload; takes effect at the next frame.
+    pub fn set_layers(&mut self, queue: &wgpu::Queue, layers: &[ShadowLayer]) {
+        for (uniform, layer) in self.uniforms.iter_mut().zip(layers) {
+            uniform.clip_from_world = layer.clip_from_world;
+        }
+        if !self.uniforms.is_empty() {
+            queue.write_buffer(&self.entries, 0, bytemuck::cast_slice(&self.uniforms));
+        }
     }
 
     /// Changes view `i`'s projection (a moving camera or light); takes effect at the next

@@ -4,7 +4,7 @@
 //! Real lights keep a real-only and a virtual-only RSM; so do virtual ones here (their
 //! union is the single RSM of the thesis, and the split costs nothing extra).
 
-use crate::raster::{Casters, RasterViews, Rasterizer, ViewSpec};
+use crate::raster::{RasterViews, Rasterizer, ViewSpec};
 use crate::scene_gpu::{GpuScene, ShadowLayer};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
@@ -76,18 +76,7 @@ impl RsmPass {
             })
         };
         let visibility = buffer("rsm/visibility", count * texel_count * 8);
-        let specs: Vec<ViewSpec> = layers
-            .iter()
-            .enumerate()
-            .map(|(i, layer)| ViewSpec {
-                size: (res, res),
-                casters: Casters::Only(layer.casters),
-                clip_from_world: layer.clip_from_world,
-                near: layer.near,
-                offset: i as u64 * texel_count * 8,
-            })
-            .collect();
-        let views = rasterizer.views(ctx, &scene.geometry, "rsm", Some(&visibility), &specs);
+        let views = rasterizer.views(ctx, &scene.geometry, "rsm", Some(&visibility), &ViewSpec::of_layers(layers, res));
         let levels = res.ilog2() + 1;
         let pyramid_stride: u32 = (0..levels).map(|l| (res >> l) * (res >> l)).sum();
         let texels = buffer("rsm/texels", count * texel_count * TEXEL_BYTES);
@@ -224,9 +213,7 @@ impl RsmPass {
 
     /// Moves the layers' projections to `layers` (moving lights); the next frame draws them.
     pub fn set_layers(&mut self, queue: &wgpu::Queue, layers: &[ShadowLayer]) {
-        for (i, layer) in layers.iter().enumerate().take(self.views.len()) {
-            self.views.set_clip_from_world(queue, i, layer.clip_from_world);
-        }
+        self.views.set_layers(queue, layers);
         let world_from_clip: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world.inverse()).collect();
         if !world_from_clip.is_empty() {
             queue.write_buffer(&self.world_from_clip, 0, bytemuck::cast_slice(&world_from_clip));

@@ -4,7 +4,7 @@
 //! maps depend on the geometry and the lights only: they are drawn again when either changed,
 //! not for a camera that moves through a still scene.
 
-use crate::raster::{Casters, RasterViews, Rasterizer, ViewSpec};
+use crate::raster::{RasterViews, Rasterizer, ViewSpec};
 use crate::scene_gpu::{Geometry, ShadowLayer};
 use mrshade_core::settings::ShadowSettings;
 use mrshade_gpu::GpuContext;
@@ -40,26 +40,13 @@ impl ShadowPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let specs: Vec<ViewSpec> = layers
-            .iter()
-            .enumerate()
-            .map(|(i, layer)| ViewSpec {
-                size: (res, res),
-                casters: Casters::Only(layer.casters),
-                clip_from_world: layer.clip_from_world,
-                near: layer.near,
-                offset: i as u64 * layer_bytes,
-            })
-            .collect();
-        let views = rasterizer.views(ctx, geometry, "shadows", Some(&maps), &specs);
+        let views = rasterizer.views(ctx, geometry, "shadows", Some(&maps), &ViewSpec::of_layers(layers, res));
         Self { views, maps, stale: true }
     }
 
     /// Moves the layers' projections to `layers` (moving lights); the next frame draws them.
     pub fn set_layers(&mut self, queue: &wgpu::Queue, layers: &[ShadowLayer]) {
-        for (i, layer) in layers.iter().enumerate().take(self.views.len()) {
-            self.views.set_clip_from_world(queue, i, layer.clip_from_world);
-        }
+        self.views.set_layers(queue, layers);
         self.stale = true;
     }
 
