@@ -15,6 +15,7 @@ use serde_json::json;
 const REAL: u32 = 1;
 const IR: u32 = 2;
 const PATH_REAL: u32 = 4;
+const BOUNCED: u32 = 8;
 
 /// A virtual spot (straight down from `height`) over a real floor of albedo 0.5, with
 /// `extra` session tables, rendered for one frame.
@@ -220,9 +221,11 @@ fn a_bounce_ray_that_meets_virtual_geometry_first_goes_on_to_a_real_surface_as_a
     let on_box = |v: &GpuVpl| (v.position.truncate() - Vec3::new(0.0, 0.5, 0.0)).abs().max_element() <= box_half + 1e-3;
     let on_ceiling = |v: &GpuVpl| (v.position.y - ceiling).abs() < 1e-3;
     let virtual_hits = first.iter().filter(|v| on_box(v)).count();
-    let vpl3 = first.iter().filter(|v| on_ceiling(v) && v.info.x == REAL | IR | PATH_REAL).count();
-    let plain = first.iter().filter(|v| on_ceiling(v) && v.info.x == REAL | PATH_REAL).count();
-    assert!(first.iter().filter(|v| on_box(v)).all(|v| v.info.x == 0), "a VPL on the box is virtual, x̄ = 0");
+    // Every multiple-bounce VPL says so (its near field is the screen's, vpl.wgsl).
+    assert!(bounce.iter().all(|v| v.info.x & BOUNCED != 0), "multiple-bounce VPLs are flagged");
+    let vpl3 = first.iter().filter(|v| on_ceiling(v) && v.info.x == REAL | IR | PATH_REAL | BOUNCED).count();
+    let plain = first.iter().filter(|v| on_ceiling(v) && v.info.x == REAL | PATH_REAL | BOUNCED).count();
+    assert!(first.iter().filter(|v| on_box(v)).all(|v| v.info.x == BOUNCED), "a VPL on the box is virtual, x̄ = 0");
     for v in bounce.iter().filter(|v| v.info.x & IR != 0) {
         assert!(!on_box(v) && v.info.x & REAL != 0, "a VPL3 lies on a real surface: {v:?}");
     }

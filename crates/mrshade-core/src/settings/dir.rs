@@ -127,6 +127,14 @@ pub struct DirSettings {
     /// SSDO complements ISMs, Ritschel et al. 2009). Not in the thesis; 0 turns it off.
     /// Default 4.
     pub near_field_samples: u32,
+    /// Reach of the multiple-bounce near field, as a fraction of the scene's bounding radius
+    /// (as `clamp_distance`): within it, light reflected more than once between close
+    /// surfaces (the inside corner of a block and the floor it stands on) is gathered from
+    /// the neighbouring pixels' indirect light of the previous frame, with
+    /// `near_field_samples` samples, and the multiple-bounce VPLs are clamped there instead
+    /// of at `clamp_distance`. At most 64 pixels on screen. Not in the thesis; at most
+    /// `clamp_distance` turns it off. Default 0.1.
+    pub near_field_radius: f32,
     /// Side of an ISM splat relative to the spacing of the points (`sqrt(area / points)`);
     /// not in the thesis (suggestion 1.5–2). Default 1.5.
     pub splat_scale: f32,
@@ -159,6 +167,7 @@ impl Default for DirSettings {
             bounce_cone_deg: 5.0,
             clamp_distance: 0.025,
             near_field_samples: 4,
+            near_field_radius: 0.1,
             splat_scale: 1.5,
             ism_bias: 0.03,
             ism_normal_offset: 1.0,
@@ -218,6 +227,7 @@ impl DirSettings {
         )?;
         for (name, value, range) in [
             ("dir.clamp_distance", self.clamp_distance, 0.0..1.0),
+            ("dir.near_field_radius", self.near_field_radius, 0.0..1.0),
             ("dir.splat_scale", self.splat_scale, 0.1..10.0),
             ("dir.ism_bias", self.ism_bias, 0.0..0.5),
             ("dir.ism_normal_offset", self.ism_normal_offset, 0.0..10.0),
@@ -276,6 +286,8 @@ mod tests {
         assert!(d.validate().unwrap_err().contains("dir.rsm_resolution"));
         let d = DirSettings { vpl_count: 8, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.vpl_count"));
+        let d = DirSettings { near_field_radius: f32::NAN, ..Default::default() };
+        assert!(d.validate().unwrap_err().contains("dir.near_field_radius"));
         // Each valid alone, too many together (8 GB of points).
         let d = DirSettings { vpl_count: 4096, points_per_vpl: 65536, ..Default::default() };
         let err = d.validate().unwrap_err();

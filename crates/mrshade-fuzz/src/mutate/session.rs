@@ -53,6 +53,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dir.rsm_resolution", Kind::Number),
     ("dir.interleave", Kind::Number),
     ("dir.near_field_samples", Kind::Number),
+    ("dir.near_field_radius", Kind::Number),
     ("dir.seed", Kind::Number),
     ("dir.clamp_distance", Kind::Number),
     ("dir.distribution", Kind::Choice(&["equal", "weighted", "flux"])),

@@ -14,6 +14,10 @@ const VPL_REAL: u32 = 1u;
 const VPL_IR: u32 = 2u;
 // x̄: every element of the light path so far is real.
 const VPL_PATH_REAL: u32 = 4u;
+// The VPL's light has been reflected diffusely more than once (the multiple-bounce source):
+// its near field is the screen's (nearfield.wgsl), so it is clamped at the wider distance of
+// VplShading.d_bounce.
+const VPL_BOUNCED: u32 = 8u;
 
 struct Vpl {
     // xyz: world position (surface) or unit direction of propagation (directional);

@@ -8,7 +8,9 @@
 // the screen and for the specular stage's shading of the surfaces that reflections and
 // refractions hit off screen.
 // Needs vpl.wgsl, ism.wgsl, brdf.wgsl, gbuffer.wgsl and the bindings `vpls`, `ism`,
-// `ism_real`, `ism_virtual`, `materials`.
+// `ism_real`, `ism_virtual`, `materials`, and a function
+// `screen_covers(x: vec3f, how: VplShading) -> bool` (whether the screen-space near field
+// gathers the surface at x; `false` where there is none).
 
 struct VplLight {
     rv: vec3f,
@@ -27,12 +29,17 @@ struct VplLight {
 // chrome ball or a gold torus, reflects about half of the rays down.
 const MIRRORED_SURROUNDINGS: f32 = 0.5;
 
-// How the VPLs light one receiver: their lower bound of the VPL–receiver distance (m);
-// whether the probe's light through transmissive casters is carried by photons (the
+// How the VPLs light one receiver: their lower bound of the VPL–receiver distance (m), for
+// once-reflected light and for the multiple-bounce VPLs' (VPL_BOUNCED) that lie on a surface
+// the camera sees within `screen_radius` pixels of `pixel` (where the screen gathers what
+// this wider clamp leaves out; `screen_covers`); whether the probe's light through transmissive casters is carried by photons (the
 // specular stage's caustics) rather than let through by the shadow; whether the directional
 // VPLs' visibility sums are wanted.
 struct VplShading {
     d_min: f32,
+    d_bounce: f32,
+    pixel: vec2f,
+    screen_radius: f32,
     photons: bool,
     directional: bool,
 }
@@ -110,11 +117,19 @@ fn ism_visibility(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool, photons: b
 
 // The VPLs `first`, `first + step`, … below `count` at surface `s` (r(p) = `r_p`; `traced`:
 // the specular stage reflects its specular lobe), unscaled.
+// The squared clamp distance of VPL `v` at squared distance `d2`: the multiple-bounce VPLs
+// that the screen-space near field covers stand for the light beyond its reach only.
+fn vpl_clamp2(v: Vpl, d2: f32, d_min2: f32, d_bounce2: f32, how: VplShading) -> f32 {
+    if ((v.info.x & VPL_BOUNCED) == 0u || d2 >= d_bounce2 || d_bounce2 <= d_min2) { return d_min2; }
+    return select(d_min2, d_bounce2, screen_covers(v.position.xyz, how));
+}
+
 fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u32, how: VplShading) -> VplLight {
     var out = VplLight(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
     let receiver_real = r_p > 0.0;
     let p = s.position;
     let d_min2 = how.d_min * how.d_min;
+    let d_bounce2 = how.d_bounce * how.d_bounce;
     for (var i = first; i < count; i += step) {
         let v = vpls[i];
         let kind = vpl_kind(v);
@@ -125,7 +140,7 @@ fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u
             if (dot(s.normal, l) <= 0.0) { continue; }
             let emission = vpl_emission(v, -l);
             if (all(emission == vec3f(0.0))) { continue; }
-            let transfer = receiver_brdf_cos(s, l, traced) * emission / max(d2, d_min2);
+            let transfer = receiver_brdf_cos(s, l, traced) * emission / max(d2, vpl_clamp2(v, d2, d_min2, d_bounce2, how));
             let l_o = transfer * v.power.rgb;
             let vis = ism_visibility(i, v, p, s.normal, receiver_real, how.photons);
             let route = vpl_routing(v.info.x, r_p, vis);

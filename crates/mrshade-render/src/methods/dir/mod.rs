@@ -105,6 +105,7 @@ impl DirMethod {
         let ism = IsmPass::new(ctx, &ism_resources, &scene.geometry, &vpl.vpls);
         let d_min = settings.clamp_distance * radius;
         let interleaved = IndirectLight::new(&ctx.device, "indirect/interleaved", internal_size);
+        let filter = FilterPass::new(ctx, frame_uniforms, settings, session.exposure, gbuffer, &interleaved);
         let indirect = IndirectPass::new(
             ctx,
             frame_uniforms,
@@ -115,10 +116,12 @@ impl DirMethod {
             settings,
             session.settings.probe_caustics(),
             d_min,
+            settings.near_field_radius * radius,
             radiance,
+            // The merged light is still the previous frame's when the interleaved pass reads it.
+            &filter.merged.light,
             &interleaved,
         );
-        let filter = FilterPass::new(ctx, frame_uniforms, settings, session.exposure, gbuffer, &interleaved);
         Self {
             rsm,
             ism_resources,

@@ -15,7 +15,8 @@
 struct IndirectParams {
     // interleave I, VPL count, near-field samples, 1 if the probe's caustics are photons
     info: vec4u,
-    // clamp distance d_min (m), unused…
+    // clamp distance d_min (m), near-field radius of the multiple-bounce light (m; ≤ d_min:
+    // none), unused…
     values: vec4f,
 }
 
@@ -35,9 +36,12 @@ struct IndirectParams {
 
 // Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 
-// The previous frame's radiance (source of the near-field bounce, nearfield.wgsl).
+// The previous frame's radiance and the indirect part of it (sources of the near-field
+// bounce, nearfield.wgsl).
 @group(3) @binding(0) var previous_l_rv: texture_2d<f32>;
 @group(3) @binding(1) var previous_l_r: texture_2d<f32>;
+@group(3) @binding(2) var previous_indirect_rv: texture_2d<f32>;
+@group(3) @binding(3) var previous_indirect_r: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
@@ -60,12 +64,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     // is not a multiple of 7), so temporal smoothing sees every subset at every pixel.
     let frame_index = u32(frame.exposure_env.w);
     let subset = ((id.x % interleave) + interleave * (id.y % interleave) + 7u * frame_index) % step;
-    let how = VplShading(params.values.x, params.info.w == 1u, true);
+    let d_min = params.values.x;
+    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, params.values.y, params.info.z, frame_index);
+    let how = VplShading(d_min, bounced.d_bounce, vec2f(pixel) + 0.5, bounced.radius_px, params.info.w == 1u, true);
     let light = vpl_light(s, traced, r_p, subset, step, params.info.y, how);
     let scale = f32(step);
-    let near = near_field(pixel, s, traced, r_p, params.values.x, params.info.z, frame_index);
+    let near = near_field(pixel, s, traced, r_p, d_min, params.info.z, frame_index);
     // Surroundings mirrored by virtual metals (vpl_light.wgsl): p's own radiance of the previous
     // frame stands for theirs.
     let mirrored = light.mirrored * scale * textureLoad(previous_l_rv, pixel, 0).rgb;
-    store_indirect(pixel, light.rv * scale + near.rv + mirrored, light.r * scale + near.r, light.env_rv, light.env_r, light.env_weight);
+    store_indirect(pixel, light.rv * scale + near.rv + bounced.light.rv + mirrored, light.r * scale + near.r + bounced.light.r, light.env_rv, light.env_r, light.env_weight);
 }

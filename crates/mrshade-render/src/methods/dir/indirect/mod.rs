@@ -34,7 +34,8 @@ impl IndirectPass {
     pub const LABEL: &'static str = "indirect";
 
     /// Binds the G-buffer, VPLs and ISMs (VPLs lit closer than `d_min` metres light as if
-    /// from `d_min`); writes `out`. With `probe_caustics` the probe's
+    /// from `d_min`; multiple-bounce VPLs from `near_radius`, within which the previous
+    /// frame's `previous_indirect` light is gathered from the screen); writes `out`. With `probe_caustics` the probe's
     /// light through transmissive casters is the specular stage's (photons), not the shadow's.
     #[allow(clippy::too_many_arguments, reason = "shading reads all of these")]
     pub fn new(
@@ -47,7 +48,9 @@ impl IndirectPass {
         settings: &DirSettings,
         probe_caustics: bool,
         d_min: f32,
+        near_radius: f32,
         previous_radiance: &Differential<Target>,
+        previous_indirect: &Differential<Target>,
         out: &IndirectLight,
     ) -> Self {
         let device = &ctx.device;
@@ -59,7 +62,7 @@ impl IndirectPass {
                 settings.near_field_samples,
                 probe_caustics as u32,
             ),
-            values: Vec4::new(d_min, 0.0, 0.0, 0.0),
+            values: Vec4::new(d_min, near_radius, 0.0, 0.0),
         };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("indirect/params"),
@@ -79,13 +82,18 @@ impl IndirectPass {
         let previous_layout = bind::layout(
             device,
             "indirect/previous_layout",
-            &[bind::texture(0, cs, unfilterable, d2), bind::texture(1, cs, unfilterable, d2)],
+            &(0..4).map(|i| bind::texture(i, cs, unfilterable, d2)).collect::<Vec<_>>(),
         );
         let previous_group = bind::group(
             device,
             "indirect/previous_group",
             &previous_layout,
-            &[TextureView(&previous_radiance.rv.view), TextureView(&previous_radiance.r.view)],
+            &[
+                TextureView(&previous_radiance.rv.view),
+                TextureView(&previous_radiance.r.view),
+                TextureView(&previous_indirect.rv.view),
+                TextureView(&previous_indirect.r.view),
+            ],
         );
         use wgpu::BindingResource::TextureView;
         let groups = [0usize, 1].map(|parity| {

@@ -222,7 +222,7 @@ fn cs_finalize(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_in
     v.albedo = vec4f(vpl_base_color(m, m.base_color.rgb, m.params.x), m.dielectric.a);
     v.incoming = vec4f(incoming, (m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0);
     // x̄ = x̄_source · r(p); ir is inherited (Eq. 5.9–5.10).
-    var flags = b.info.x & VPL_IR;
+    var flags = (b.info.x & VPL_IR) | VPL_BOUNCED;
     if (real_only) { flags |= VPL_IR; }
     if (p.real) {
         flags |= VPL_REAL | (b.info.x & VPL_PATH_REAL);
