@@ -123,18 +123,24 @@ pub struct DirSettings {
     pub clamp_distance: f32,
     /// Screen-space samples per pixel and frame of the near-field bounce: light between
     /// surfaces closer than `clamp_distance`, the part of the VPLs' light that clamping
-    /// removes, gathered from the neighbouring pixels' radiance of the previous frame (as
+    /// removes, gathered from the neighbouring pixels' radiance of the previous frame (less
+    /// their indirect light, which `near_field_radius` gathers; as
     /// SSDO complements ISMs, Ritschel et al. 2009). Not in the thesis; 0 turns it off.
     /// Default 4.
     pub near_field_samples: u32,
     /// Reach of the multiple-bounce near field, as a fraction of the scene's bounding radius
     /// (as `clamp_distance`): within it, light reflected more than once between close
     /// surfaces (the inside corner of a block and the floor it stands on) is gathered from
-    /// the neighbouring pixels' indirect light of the previous frame, with
-    /// `near_field_samples` samples, and the multiple-bounce VPLs are clamped there instead
-    /// of at `clamp_distance`. At most 64 pixels on screen. Not in the thesis; at most
-    /// `clamp_distance` turns it off. Default 0.1.
+    /// the neighbouring pixels' indirect light of the previous frame, and the multiple-bounce
+    /// VPLs on surfaces the camera sees there are clamped at it instead of at
+    /// `clamp_distance`. At most 128 pixels on screen. Not in the thesis; at most
+    /// `clamp_distance`, or `bounce = "off"`, turns it off. Default 0.2 (region FLIP over four seeds, H200:
+    /// cornell 0.0838 → 0.0756, desk-bunny 0.0514 → 0.0488, the spot scenes 3–4 % lower;
+    /// docs/benchmarks.md).
     pub near_field_radius: f32,
+    /// Screen-space samples per pixel and frame of the multiple-bounce near field (0–64).
+    /// Default 2 (4 scored the same at 256 frames and cost 0.04 ms more at 1080p).
+    pub near_field_bounce_samples: u32,
     /// Side of an ISM splat relative to the spacing of the points (`sqrt(area / points)`);
     /// not in the thesis (suggestion 1.5–2). Default 1.5.
     pub splat_scale: f32,
@@ -167,7 +173,8 @@ impl Default for DirSettings {
             bounce_cone_deg: 5.0,
             clamp_distance: 0.025,
             near_field_samples: 4,
-            near_field_radius: 0.1,
+            near_field_radius: 0.2,
+            near_field_bounce_samples: 2,
             splat_scale: 1.5,
             ism_bias: 0.03,
             ism_normal_offset: 1.0,
@@ -215,11 +222,12 @@ impl DirSettings {
             "dir.rsm_resolution",
             format!("must be a power of two between 4 and 2048, got {}", self.rsm_resolution),
         )?;
-        check(
-            self.near_field_samples <= 64,
-            "dir.near_field_samples",
-            format!("must be at most 64, got {}", self.near_field_samples),
-        )?;
+        for (name, samples) in [
+            ("dir.near_field_samples", self.near_field_samples),
+            ("dir.near_field_bounce_samples", self.near_field_bounce_samples),
+        ] {
+            check(samples <= 64, name, format!("must be at most 64, got {samples}"))?;
+        }
         check(
             self.bounce_cone_deg > 0.0 && self.bounce_cone_deg < 90.0,
             "dir.bounce_cone_deg",
@@ -288,6 +296,8 @@ mod tests {
         assert!(d.validate().unwrap_err().contains("dir.vpl_count"));
         let d = DirSettings { near_field_radius: f32::NAN, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.near_field_radius"));
+        let d = DirSettings { near_field_bounce_samples: 65, ..Default::default() };
+        assert!(d.validate().unwrap_err().contains("dir.near_field_bounce_samples"));
         // Each valid alone, too many together (8 GB of points).
         let d = DirSettings { vpl_count: 4096, points_per_vpl: 65536, ..Default::default() };
         let err = d.validate().unwrap_err();

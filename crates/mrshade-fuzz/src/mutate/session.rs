@@ -54,6 +54,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dir.interleave", Kind::Number),
     ("dir.near_field_samples", Kind::Number),
     ("dir.near_field_radius", Kind::Number),
+    ("dir.near_field_bounce_samples", Kind::Number),
     ("dir.seed", Kind::Number),
     ("dir.clamp_distance", Kind::Number),
     ("dir.distribution", Kind::Choice(&["equal", "weighted", "flux"])),

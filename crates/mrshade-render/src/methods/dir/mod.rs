@@ -28,6 +28,7 @@ use anyhow::Result;
 use filter::{FilterPass, History};
 use indirect::IndirectPass;
 use ism::{IsmPass, IsmResources};
+use mrshade_core::settings::BounceMethod;
 use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::Recorder;
 use rsm::RsmPass;
@@ -116,7 +117,8 @@ impl DirMethod {
             settings,
             session.settings.probe_caustics(),
             d_min,
-            settings.near_field_radius * radius,
+            // Without the multiple-bounce source, light is reflected once: nothing to gather.
+            if settings.bounce == BounceMethod::Off { 0.0 } else { settings.near_field_radius * radius },
             radiance,
             // The merged light is still the previous frame's when the interleaved pass reads it.
             &filter.merged.light,

@@ -18,6 +18,8 @@ struct IndirectParams {
     // clamp distance d_min (m), near-field radius of the multiple-bounce light (m; ≤ d_min:
     // none), unused…
     values: vec4f,
+    // samples of the multiple-bounce near field, unused…
+    near: vec4u,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -65,7 +67,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let frame_index = u32(frame.exposure_env.w);
     let subset = ((id.x % interleave) + interleave * (id.y % interleave) + 7u * frame_index) % step;
     let d_min = params.values.x;
-    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, params.values.y, params.info.z, frame_index);
+    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, params.values.y, params.near.x, frame_index);
     let how = VplShading(d_min, bounced.d_bounce, vec2f(pixel) + 0.5, bounced.radius_px, params.info.w == 1u, true);
     let light = vpl_light(s, traced, r_p, subset, step, params.info.y, how);
     let scale = f32(step);

@@ -19,6 +19,7 @@ use wgpu::util::DeviceExt;
 struct IndirectParams {
     info: UVec4,
     values: Vec4,
+    near: UVec4,
 }
 
 /// The interleaved shading pass.
@@ -63,6 +64,7 @@ impl IndirectPass {
                 probe_caustics as u32,
             ),
             values: Vec4::new(d_min, near_radius, 0.0, 0.0),
+            near: UVec4::new(settings.near_field_bounce_samples, 0, 0, 0),
         };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("indirect/params"),
