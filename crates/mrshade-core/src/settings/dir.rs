@@ -134,9 +134,9 @@ pub struct DirSettings {
     /// the neighbouring pixels' indirect light of the previous frame, and the multiple-bounce
     /// VPLs on surfaces the camera sees there are clamped at it instead of at
     /// `clamp_distance`. At most 128 pixels on screen. Not in the thesis; at most
-    /// `clamp_distance`, or `bounce = "off"`, turns it off. Default 0.2 (region FLIP over four seeds, H200:
-    /// cornell 0.0838 → 0.0756, desk-bunny 0.0514 → 0.0488, the spot scenes 3–4 % lower;
-    /// docs/benchmarks.md).
+    /// `clamp_distance`, or `bounce = "off"`, turns it off. Default 0.3 (region FLIP over
+    /// four seeds at 640×480, H200: cornell 0.0838 → 0.0731, desk-bunny 0.0514 → 0.0488, the
+    /// spot scenes 3–4 % lower; docs/benchmarks.md).
     pub near_field_radius: f32,
     /// Screen-space samples per pixel and frame of the multiple-bounce near field (0–64).
     /// Default 2 (4 scored the same at 256 frames and cost 0.04 ms more at 1080p).
@@ -173,7 +173,7 @@ impl Default for DirSettings {
             bounce_cone_deg: 5.0,
             clamp_distance: 0.025,
             near_field_samples: 4,
-            near_field_radius: 0.2,
+            near_field_radius: 0.3,
             near_field_bounce_samples: 2,
             splat_scale: 1.5,
             ism_bias: 0.03,

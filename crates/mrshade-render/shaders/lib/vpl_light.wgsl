@@ -40,6 +40,8 @@ struct VplShading {
     d_bounce: f32,
     pixel: vec2f,
     screen_radius: f32,
+    // Pixels per metre at unit distance around the receiver.
+    scale: f32,
     photons: bool,
     directional: bool,
 }

@@ -120,7 +120,7 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
     // surfaces receive no photons (the caustic buffer is the screen's), so the light the
     // glass and the mirror send onto the desk went missing, and the shadows of the virtual
     // boxes beside desk-mirror's sphere turned black in its reflection.
-    let how = VplShading(params.tolerances.z, params.tolerances.z, vec2f(0.0), 0.0, false, false);
+    let how = VplShading(params.tolerances.z, params.tolerances.z, vec2f(0.0), 0.0, 1.0, false, false);
     let stride = params.more.y;
     let vpl = vpl_light(s, is_traced(m), r_p, hit_vpl_first, stride, params.more.x, how);
     let probe = env_shading(frame, s, vec3f(0.0)) + s.emission;

@@ -67,11 +67,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let frame_index = u32(frame.exposure_env.w);
     let subset = ((id.x % interleave) + interleave * (id.y % interleave) + 7u * frame_index) % step;
     let d_min = params.values.x;
-    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, params.values.y, params.near.x, frame_index);
-    let how = VplShading(d_min, bounced.d_bounce, vec2f(pixel) + 0.5, bounced.radius_px, params.info.w == 1u, true);
+    let screen_scale = pixels_per_metre(s.position, vec2f(pixel) + 0.5);
+    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, screen_scale, params.values.y, params.near.x, frame_index);
+    let how = VplShading(d_min, bounced.d_bounce, vec2f(pixel) + 0.5, bounced.radius_px, screen_scale, params.info.w == 1u, true);
     let light = vpl_light(s, traced, r_p, subset, step, params.info.y, how);
     let scale = f32(step);
-    let near = near_field(pixel, s, traced, r_p, d_min, params.info.z, frame_index);
+    let near = near_field(pixel, s, traced, r_p, d_min, screen_scale, params.info.z, frame_index);
     // Surroundings mirrored by virtual metals (vpl_light.wgsl): p's own radiance of the previous
     // frame stands for theirs.
     let mirrored = light.mirrored * scale * textureLoad(previous_l_rv, pixel, 0).rgb;

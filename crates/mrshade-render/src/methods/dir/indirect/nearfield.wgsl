@@ -71,11 +71,11 @@ fn near_kernel(c: Patch, clamp: f32) -> f32 {
     return max(1.0 / (c.d2 + c.area / PI) - 1.0 / (clamp * clamp), 0.0);
 }
 
-fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, samples: u32, frame_index: u32) -> NearField {
+// `scale`: pixels per metre at unit distance around the receiver (pixels_per_metre).
+fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, scale: f32, samples: u32, frame_index: u32) -> NearField {
     var out: NearField;
     if (samples == 0u || d_min <= 0.0) { return out; }
     let centre = vec2f(pixel) + 0.5;
-    let scale = pixels_per_metre(s.position, centre);
     let radius_px = d_min * scale / distance(s.position, frame.camera_position.xyz);
     if (radius_px < 1.0) { return out; }
     // Each sample stands for this many pixels of the disc.
@@ -142,7 +142,8 @@ fn screen_covers(x: vec3f, how: VplShading) -> bool {
     if (any(q < vec2i(0)) || any(q >= vec2i(frame.size.xy))) { return false; }
     if (!is_covered(textureLoad(gbuffer_flags, q, 0).r)) { return false; }
     let seen = world_from_pixel(frame, vec2f(q) + 0.5, textureLoad(gbuffer_depth_motion, q, 0).x);
-    let metres_per_pixel = distance(x, frame.camera_position.xyz) / pixels_per_metre(x, at);
+    // The receiver's pixel size stands for x's (they lie within the disc of each other).
+    let metres_per_pixel = distance(x, frame.camera_position.xyz) / how.scale;
     return distance(seen, x) <= SCREEN_COVER_PIXELS * metres_per_pixel;
 }
 
@@ -159,11 +160,10 @@ const SCREEN_COVER_PIXELS: f32 = 4.0;
 // is gathered from the pixels around p with the previous frame's indirect light as their
 // outgoing light: every further bounce among them, over frames. Samples are drawn uniformly
 // in distance (density ∝ 1/r, matching the kernel's 1/d²). Real and virtual routing as above.
-fn near_field_bounced(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, radius: f32, samples: u32, frame_index: u32) -> Bounced {
+fn near_field_bounced(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, scale: f32, radius: f32, samples: u32, frame_index: u32) -> Bounced {
     var out = Bounced(NearField(vec3f(0.0), vec3f(0.0)), d_min, 0.0);
     if (samples == 0u || radius <= d_min) { return out; }
     let centre = vec2f(pixel) + 0.5;
-    let scale = pixels_per_metre(s.position, centre);
     let metres_per_pixel = distance(s.position, frame.camera_position.xyz) / scale;
     let radius_px = min(radius / metres_per_pixel, BOUNCED_MAX_PIXELS);
     out.d_bounce = max(radius_px * metres_per_pixel, d_min);
