@@ -139,7 +139,7 @@ pub struct DirSettings {
     /// spot scenes 3–4 % lower; docs/benchmarks.md).
     pub near_field_radius: f32,
     /// Screen-space samples per pixel and frame of the multiple-bounce near field (0–64).
-    /// Default 2 (4 scored the same at 256 frames and cost 0.04 ms more at 1080p).
+    /// Default 2 (4 scored the same at 256 frames and cost 0.03 ms more at 1080p).
     pub near_field_bounce_samples: u32,
     /// Side of an ISM splat relative to the spacing of the points (`sqrt(area / points)`);
     /// not in the thesis (suggestion 1.5–2). Default 1.5.

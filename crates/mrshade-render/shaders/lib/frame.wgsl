@@ -27,6 +27,14 @@ fn world_from_pixel(frame: Frame, pixel: vec2f, depth: f32) -> vec3f {
     return h.xyz / h.w;
 }
 
+// Pixel coordinates (internal resolution; centres at +0.5) of world point `x` in xy, its clip
+// w in z (≤ 0: behind the camera, xy meaningless): the inverse of world_from_pixel.
+fn pixel_from_world(frame: Frame, x: vec3f) -> vec3f {
+    let clip = frame.clip_from_world * vec4f(x, 1.0);
+    let ndc = clip.xy / clip.w;
+    return vec3f(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2f(frame.size.xy), clip.w);
+}
+
 // Rec.709 luminance of linear RGB.
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));

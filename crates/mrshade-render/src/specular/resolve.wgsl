@@ -131,10 +131,9 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
 
 // Internal pixel of world point `x` (−1 when outside the frustum).
 fn project(x: vec3f) -> vec2i {
-    let clip = frame.clip_from_world * vec4f(x, 1.0);
-    if (clip.w <= 0.0) { return vec2i(-1); }
-    let ndc = clip.xy / clip.w;
-    let q = vec2i(floor(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2f(frame.size.xy)));
+    let at = pixel_from_world(frame, x);
+    if (at.z <= 0.0) { return vec2i(-1); }
+    let q = vec2i(floor(at.xy));
     if (any(q < vec2i(0)) || any(q >= vec2i(frame.size.xy))) { return vec2i(-1); }
     return q;
 }

@@ -108,10 +108,9 @@ fn refraction_exit(pixel: vec2i, p1: vec3f, view_dir: vec3f, n1: vec3f, ior: f32
     let d_v = max(intersect(back - 1u, eye, view_dir).t - distance(eye, p1), 0.0);
     var p2 = p1 + rt * d_v;
     var n_out = vec3f(0.0);
-    let clip = frame.clip_from_world * vec4f(p2, 1.0);
-    let ndc = clip.xy / clip.w;
-    let q = vec2i(floor(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2f(frame.size.xy)));
-    if (clip.w > 0.0 && all(q >= vec2i(0)) && all(q < vec2i(frame.size.xy))) {
+    let at = pixel_from_world(frame, p2);
+    let q = vec2i(floor(at.xy));
+    if (at.z > 0.0 && all(q >= vec2i(0)) && all(q < vec2i(frame.size.xy))) {
         let back2 = farthest_triangle(view_offset, q);
         if (back2 != 0u) {
             // The back surface seen at p2's pixel, met by the refracted ray itself.

@@ -36,7 +36,7 @@
 // prefiltered over about the 2π/count sr it stands for, times that solid angle.
 fn probe_light(k: u32, count: u32) -> Light {
     let frame_index = u32(frame.exposure_env.w);
-    let jitter = vec2f(f32(hash_u32(frame_index * 2u + 1u)), f32(hash_u32(frame_index * 2u + 2u))) * 2.3283064365386963e-10;
+    let jitter = hash_uniform2(frame_index * 2u + 1u);
     let y = 1.0 - (f32(k) + jitter.x) / f32(count);
     let phi = 2.0 * PI * fract(f32(k) * 0.6180339887 + jitter.y);
     let r = sqrt(max(1.0 - y * y, 0.0));

@@ -23,10 +23,7 @@ struct NearField {
 fn pixels_per_metre(p: vec3f, pixel: vec2f) -> f32 {
     let view = normalize(p - frame.camera_position.xyz);
     let side = normalize(cross(view, select(vec3f(0.0, 1.0, 0.0), vec3f(1.0, 0.0, 0.0), abs(view.y) > 0.9)));
-    let h = frame.clip_from_world * vec4f(p + side * 0.01, 1.0);
-    let ndc = h.xy / h.w;
-    let size = vec2f(frame.size.xy);
-    let moved = vec2f((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y);
+    let moved = pixel_from_world(frame, p + side * 0.01).xy;
     return length(moved - pixel) / 0.01 * distance(p, frame.camera_position.xyz);
 }
 
@@ -82,7 +79,7 @@ fn near_field(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f32, scal
     let pixels_per_sample = PI * radius_px * radius_px / f32(samples);
     let seed = hash_u32(u32(pixel.x) * 1973u + u32(pixel.y) * 9277u + frame_index * 26699u);
     for (var k = 0u; k < samples; k++) {
-        let u = vec2f(f32(hash_u32(seed + k * 2u)), f32(hash_u32(seed + k * 2u + 1u))) * 2.3283064365386963e-10;
+        let u = hash_uniform2(seed + k * 2u);
         let offset = sqrt(u.x) * radius_px * vec2f(cos(2.0 * PI * u.y), sin(2.0 * PI * u.y));
         let q = vec2i(floor(centre + offset));
         let c = patch_at(q, pixel, s, d_min, scale);
@@ -132,13 +129,9 @@ const BOUNCED_MAX_PIXELS: f32 = 128.0;
 // around the receiver's pixel. Multiple-bounce VPLs elsewhere (the desk hidden under an
 // object) keep their light within the disc's reach.
 fn screen_covers(x: vec3f, how: VplShading) -> bool {
-    let h = frame.clip_from_world * vec4f(x, 1.0);
-    if (h.w <= 0.0) { return false; }
-    let ndc = h.xy / h.w;
-    let size = vec2f(frame.size.xy);
-    let at = vec2f((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y);
-    if (distance(at, how.pixel) > how.screen_radius) { return false; }
-    let q = vec2i(floor(at));
+    let at = pixel_from_world(frame, x);
+    if (at.z <= 0.0 || distance(at.xy, how.pixel) > how.screen_radius) { return false; }
+    let q = vec2i(floor(at.xy));
     if (any(q < vec2i(0)) || any(q >= vec2i(frame.size.xy))) { return false; }
     if (!is_covered(textureLoad(gbuffer_flags, q, 0).r)) { return false; }
     let seen = world_from_pixel(frame, vec2f(q) + 0.5, textureLoad(gbuffer_depth_motion, q, 0).x);
@@ -171,7 +164,7 @@ fn near_field_bounced(pixel: vec2i, s: Surface, traced: bool, r_p: f32, d_min: f
     out.radius_px = radius_px;
     let seed = hash_u32(u32(pixel.x) * 7919u + u32(pixel.y) * 6007u + frame_index * 15485863u);
     for (var k = 0u; k < samples; k++) {
-        let u = vec2f(f32(hash_u32(seed + k * 2u)), f32(hash_u32(seed + k * 2u + 1u))) * 2.3283064365386963e-10;
+        let u = hash_uniform2(seed + k * 2u);
         let r = u.x * radius_px;
         let q = vec2i(floor(centre + r * vec2f(cos(2.0 * PI * u.y), sin(2.0 * PI * u.y))));
         let c = patch_at(q, pixel, s, out.d_bounce, scale);
