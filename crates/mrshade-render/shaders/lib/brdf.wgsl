@@ -75,6 +75,12 @@ fn brdf_lobes(s: Surface, l: vec3f) -> Lobes {
     return out;
 }
 
+// Whether the diffuse lobe of `s` can be non-zero (brdf_lobes: not a pure metal, not fully
+// transmissive, not black).
+fn has_diffuse(s: Surface) -> bool {
+    return s.metallic < 1.0 && s.transmission < 1.0 && any(s.base_color > vec3f(0.0));
+}
+
 fn brdf_cos(s: Surface, l: vec3f) -> vec3f {
     let lobes = brdf_lobes(s, l);
     return lobes.diffuse + lobes.specular;

@@ -109,6 +109,10 @@ fn receiver_brdf_cos(s: Surface, l: vec3f, traced: bool) -> vec3f {
     return select(lobes.diffuse + lobes.specular, lobes.diffuse, traced);
 }
 
+// Whether receiver `s` reflects any light of surface VPLs, or of the surfaces around it
+// (receiver_brdf_cos can be non-zero).
+fn reflects_vpls(s: Surface, traced: bool) -> bool { return !traced || has_diffuse(s); }
+
 // (V_r, V_v) of VPL `index` at receiver `p` with normal `n`, on a real or virtual surface.
 fn ism_visibility(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool, photons: bool) -> vec2f {
     return vec2f(
@@ -132,10 +136,14 @@ fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u
     let p = s.position;
     let d_min2 = how.d_min * how.d_min;
     let d_bounce2 = how.d_bounce * how.d_bounce;
+    // A traced mirror or glass with no diffuse lobe reflects none of the surface VPLs' light
+    // (receiver_brdf_cos is zero): their visibility lookups are skipped.
+    let surface_vpls = reflects_vpls(s, traced);
     for (var i = first; i < count; i += step) {
         let v = vpls[i];
         let kind = vpl_kind(v);
         if (kind == VPL_SURFACE) {
+            if (!surface_vpls) { continue; }
             let to = v.position.xyz - p;
             let d2 = max(dot(to, to), 1e-12);
             let l = to * inverseSqrt(d2);

@@ -62,7 +62,7 @@ const FIXED_POINT_RANGE: f32 = (1u32 << 29) as f32;
 /// The method's passes and volumes.
 pub struct DlpvMethod {
     params: DlpvParams,
-    /// Per dispatch of seeding (0) and propagation (1, 2, …): its uniform (the step).
+    /// Per dispatch of seeding (0) and propagation (1, 2, …: two steps each): its uniform (its first step).
     step_params: Vec<wgpu::Buffer>,
     extent: f32,
     scene_box: Option<(Vec3, Vec3)>,
@@ -72,7 +72,7 @@ pub struct DlpvMethod {
     inject: wgpu::ComputePipeline,
     seed: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
-    /// Seeding, then one dispatch per propagation step: their groups.
+    /// Seeding, then one dispatch per two propagation steps: their groups.
     dispatches: Vec<wgpu::BindGroup>,
     /// The sums every dispatch chain starts from (cleared before seeding).
     first_sums: wgpu::Buffer,
@@ -89,6 +89,18 @@ pub struct DlpvMethod {
 /// Builds the method (the registry's `build`).
 pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DlpvMethod::new(inputs))
+}
+
+/// Workgroups of the seeding of `cells` cells: x: cells; y: accumulated volume × channel.
+pub fn seed_workgroups(cells: u32) -> [u32; 3] {
+    [cells.div_ceil(64), 3 * VOLUMES as u32, 1]
+}
+
+/// Workgroups of a propagation dispatch (two steps) of a `resolution`³ volume: tiles of 4³
+/// cells in x and y, and in z × accumulated volume × channel (propagate.wgsl).
+pub fn propagate_workgroups(resolution: u32) -> [u32; 3] {
+    let tiles = resolution.div_ceil(4);
+    [tiles, tiles, tiles * 3 * VOLUMES as u32]
 }
 
 /// The layout of seeding and propagation (propagate.wgsl's group 0): the uniform, the
@@ -147,7 +159,9 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
 impl DlpvMethod {
     /// GPU timing label of the maps' rasterisation (the RSM pass's).
     pub const RSM_LABEL: &'static str = RsmPass::LABEL;
-    /// GPU timing label of injection and propagation.
+    /// GPU timing label of the injection.
+    pub const INJECT_LABEL: &'static str = "dlpv-inject";
+    /// GPU timing label of seeding and propagation.
     pub const PROPAGATE_LABEL: &'static str = "dlpv-propagate";
     /// GPU timing label of the per-pixel merge.
     pub const LABEL: &'static str = "dlpv-merge";
@@ -200,8 +214,10 @@ impl DlpvMethod {
             })
         };
         let max_steps = params.steps.max_element();
-        let step_params: Vec<wgpu::Buffer> = (0..=max_steps)
-            .map(|step| {
+        // Dispatch 0 seeds; dispatch k ≥ 1 takes steps 2k − 1 and 2k (propagate.wgsl).
+        let step_params: Vec<wgpu::Buffer> = (0..=max_steps.div_ceil(2))
+            .map(|k| {
+                let step = (2 * k).saturating_sub(1);
                 uniform(
                     &format!("dlpv/params_step{step}"),
                     &DlpvParams { info: UVec4::new(res, cells, step, 0), ..params },
@@ -288,7 +304,7 @@ impl DlpvMethod {
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
         // Dispatch k reads scratch and sums k mod 2 and writes the others (a seed reads no
         // scratch: the other one stands in for its unused `source`).
-        let dispatches: Vec<wgpu::BindGroup> = (0..=max_steps as usize)
+        let dispatches: Vec<wgpu::BindGroup> = (0..step_params.len())
             .map(|k| {
                 let (read, write) = (k % 2, 1 - k % 2);
                 bind::group(
@@ -306,7 +322,7 @@ impl DlpvMethod {
                 )
             })
             .collect();
-        let volumes = sums[(max_steps as usize + 1) % 2].clone();
+        let volumes = sums[dispatches.len() % 2].clone();
         let first_sums = sums[0].clone();
 
         // The per-pixel merge.
@@ -436,18 +452,25 @@ impl LightTransport for DlpvMethod {
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);
             let cells = self.params.info.y;
-            rec.compute(Self::PROPAGATE_LABEL, |pass| {
+            rec.compute(Self::INJECT_LABEL, |pass| {
                 pass.set_pipeline(&self.inject);
                 for set in self.sets.iter().filter(|s| s.pairs > 0) {
                     let groups = set.rsm.resolution.div_ceil(8);
                     pass.set_bind_group(0, &set.inject_group, &[]);
                     pass.dispatch_workgroups(groups, groups, set.pairs);
                 }
+            });
+            rec.compute(Self::PROPAGATE_LABEL, |pass| {
                 for (k, group) in self.dispatches.iter().enumerate() {
-                    pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
-                    // x: cells; y: accumulated volume × channel.
-                    pass.dispatch_workgroups(cells.div_ceil(64), 3 * VOLUMES as u32, 1);
+                    let [x, y, z] = if k == 0 {
+                        pass.set_pipeline(&self.seed);
+                        seed_workgroups(cells)
+                    } else {
+                        pass.set_pipeline(&self.propagate);
+                        propagate_workgroups(self.params.info.x)
+                    };
+                    pass.dispatch_workgroups(x, y, z);
                 }
             });
         }

@@ -68,11 +68,13 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let subset = ((id.x % interleave) + interleave * (id.y % interleave) + 7u * frame_index) % step;
     let d_min = params.values.x;
     let screen_scale = pixels_per_metre(s.position, vec2f(pixel) + 0.5);
-    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, screen_scale, params.values.y, params.near.x, frame_index);
+    // The near fields gather what receiver_brdf_cos reflects: nothing on a traced metal or glass.
+    let gathers = reflects_vpls(s, traced);
+    let bounced = near_field_bounced(pixel, s, traced, r_p, d_min, screen_scale, params.values.y, select(0u, params.near.x, gathers), frame_index);
     let how = VplShading(d_min, bounced.d_bounce, vec2f(pixel) + 0.5, bounced.radius_px, screen_scale, params.info.w == 1u, true);
     let light = vpl_light(s, traced, r_p, subset, step, params.info.y, how);
     let scale = f32(step);
-    let near = near_field(pixel, s, traced, r_p, d_min, screen_scale, params.info.z, frame_index);
+    let near = near_field(pixel, s, traced, r_p, d_min, screen_scale, select(0u, params.info.z, gathers), frame_index);
     // Surroundings mirrored by virtual metals (vpl_light.wgsl): p's own radiance of the previous
     // frame stands for theirs.
     let mirrored = light.mirrored * scale * textureLoad(previous_l_rv, pixel, 0).rgb;
