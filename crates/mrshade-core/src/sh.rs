@@ -1,6 +1,7 @@
 //! Real spherical harmonics of bands 0–2 (Franke §2.0.3, Eq. 4.5–4.7; Ramamoorthi & Hanrahan
-//! 2001): the basis in Cartesian form, the zonal coefficients of the clamped cosine, the
-//! projection of an equirectangular probe and the irradiance it reconstructs (spec §2.1).
+//! 2001), and band 3 for 16-coefficient PRT (spec §2.4): the basis in Cartesian form, the
+//! zonal coefficients of the clamped cosine, the projection of an equirectangular probe and
+//! the irradiance it reconstructs (spec §2.1).
 //! The same constants are in shaders/lib/sh.wgsl (tested equal).
 
 use crate::HdrImage;
@@ -34,6 +35,55 @@ pub fn basis9(d: Vec3) -> [f32; 9] {
     [Y0, Y1 * y, Y1 * z, Y1 * x, Y2 * x * y, Y2 * y * z, Y20 * (3.0 * z * z - 1.0), Y2 * x * z, Y22 * (x * x - y * y)]
 }
 
+/// Factors of band 3 (Sloan 2008): `Y_3^{±3}`, `Y_3^{-2}`, `Y_3^{±1}`, `Y_3^0`; `Y_3^2` is
+/// [`Y32`].
+pub const Y3: [f32; 4] = [0.590_043_6, 2.890_611_4, 0.457_045_8, 0.373_176_3];
+/// Factor of `Y_3^2 = Y32·z(x² − y²)`.
+pub const Y32: f32 = 1.445_305_7;
+
+/// The sixteen basis functions of bands 0–3 at unit direction `d`, in the order
+/// `i = l(l+1) + m` (the first nine are [`basis9`]'s).
+pub fn basis16(d: Vec3) -> [f32; 16] {
+    let (x, y, z) = (d.x, d.y, d.z);
+    let b = basis9(d);
+    let z2 = z * z;
+    [
+        b[0],
+        b[1],
+        b[2],
+        b[3],
+        b[4],
+        b[5],
+        b[6],
+        b[7],
+        b[8],
+        Y3[0] * y * (3.0 * x * x - y * y),
+        Y3[1] * x * y * z,
+        Y3[2] * y * (5.0 * z2 - 1.0),
+        Y3[3] * z * (5.0 * z2 - 3.0),
+        Y3[2] * x * (5.0 * z2 - 1.0),
+        Y32 * z * (x * x - y * y),
+        Y3[0] * x * (x * x - 3.0 * y * y),
+    ]
+}
+
+/// `c_i = Σ L(t) y_i(ω_t) dω_t` of the equirectangular radiance `image` over every texel, for
+/// the `N` functions of `basis`.
+pub fn project_equirect<const N: usize>(image: &HdrImage, basis: fn(Vec3) -> [f32; N]) -> [Vec3; N] {
+    let mut c = [Vec3::ZERO; N];
+    for y in 0..image.height {
+        let dw = equirect_texel_solid_angle(y, image.width, image.height);
+        for x in 0..image.width {
+            let uv = Vec2::new((x as f32 + 0.5) / image.width as f32, (y as f32 + 0.5) / image.height as f32);
+            let l = Vec3::from(image.get(x, y)) * dw;
+            for (ci, yi) in c.iter_mut().zip(basis(dir_from_equirect_uv(uv))) {
+                *ci += l * yi;
+            }
+        }
+    }
+    c
+}
+
 /// Coefficients of a radiance function in bands 0–2, per color channel.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Sh9(pub [Vec3; 9]);
@@ -43,18 +93,7 @@ impl Sh9 {
     /// rotation and intensity apply at lookup): `c_i = Σ L(t) y_i(ω_t) dω_t` over every texel
     /// (Eq. 4.8 by summation instead of Monte Carlo).
     pub fn project_equirect(image: &HdrImage) -> Self {
-        let mut c = [Vec3::ZERO; 9];
-        for y in 0..image.height {
-            let dw = equirect_texel_solid_angle(y, image.width, image.height);
-            for x in 0..image.width {
-                let uv = Vec2::new((x as f32 + 0.5) / image.width as f32, (y as f32 + 0.5) / image.height as f32);
-                let l = Vec3::from(image.get(x, y)) * dw;
-                for (ci, yi) in c.iter_mut().zip(basis9(dir_from_equirect_uv(uv))) {
-                    *ci += l * yi;
-                }
-            }
-        }
-        Self(c)
+        Self(project_equirect(image, basis9))
     }
 
     /// Radiance reconstructed in direction `d` (Eq. 4.9).
@@ -87,14 +126,15 @@ mod tests {
     #[test]
     fn the_basis_is_orthonormal() {
         let n = 256;
-        let mut gram = [[0.0f64; 9]; 9];
+        let mut gram = [[0.0f64; 16]; 16];
         for y in 0..n / 2 {
             let dw = equirect_texel_solid_angle(y, n, n / 2) as f64;
             for x in 0..n {
                 let d = dir_from_equirect_uv(Vec2::new((x as f32 + 0.5) / n as f32, (y as f32 + 0.5) / (n / 2) as f32));
-                let b = basis9(d);
-                for i in 0..9 {
-                    for j in 0..9 {
+                let b = basis16(d);
+                assert_eq!(b[..9], basis9(d));
+                for i in 0..16 {
+                    for j in 0..16 {
                         gram[i][j] += (b[i] * b[j]) as f64 * dw;
                     }
                 }

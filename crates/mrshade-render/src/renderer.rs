@@ -140,10 +140,16 @@ impl Renderer {
             light_photons: light_photons.as_ref(),
         });
         let shading = settings.ibl.virtual_shading;
+        // SH coefficients of the probe's projection: PRT's 9 or 16, else the 9 of irradiance.
+        let coefficients = match shading {
+            VirtualShading::Prt => settings.ibl.prt_coefficients as usize,
+            _ => 9,
+        };
         let transfer = (shading == VirtualShading::Prt)
-            .then(|| crate::prt::Transfer::of(session, &scene.geometry, settings.ibl.prt_samples));
+            .then(|| crate::prt::Transfer::of(session, &scene.geometry, settings.ibl.prt_samples, coefficients));
         let prt_instances = transfer.as_ref().map_or(&[][..], |t| &t.instances[..]);
-        let probe_sh = ProbeShPass::new(ctx, &scene.probe, &frame, &scene.geometry.instances, prt_instances);
+        let probe_sh =
+            ProbeShPass::new(ctx, &scene.probe, &frame, &scene.geometry.instances, prt_instances, coefficients);
         let prt = transfer.as_ref().map(|t| {
             let visibility = &gbuffer_pass.camera.target;
             crate::prt::PrtPass::new(ctx, &frame, visibility, &scene.geometry, t, &probe_sh, internal)

@@ -6,7 +6,7 @@
 use glam::{Vec2, Vec3};
 use mrshade_core::HdrImage;
 use mrshade_core::math::dir_from_equirect_uv;
-use mrshade_core::sh::Sh9;
+use mrshade_core::sh::{Sh9, basis9, basis16, project_equirect};
 use mrshade_gpu::readback::read_buffer;
 use mrshade_gpu::timing::{Recorder, profiler};
 use mrshade_render::ibl::{EquirectPyramid, irradiance_map};
@@ -32,8 +32,8 @@ fn probe() -> HdrImage {
     HdrImage { width: w, height: h, pixels }
 }
 
-/// The GPU's coefficients of `image`.
-fn gpu_coefficients(image: &HdrImage) -> Sh9 {
+/// The GPU's first `n` (9 or 16) coefficients of `image`.
+fn gpu_coefficients(image: &HdrImage, n: usize) -> Vec<Vec3> {
     let ctx = mrshade_testkit::gpu();
     let env = Environment { image: image.clone(), rotation_deg: 0.0, intensity: 1.0 };
     let probe = GpuProbe::new(&ctx.device, &ctx.queue, Some(&env));
@@ -49,27 +49,33 @@ fn gpu_coefficients(image: &HdrImage) -> Sh9 {
         usage: mrshade_gpu::wgpu::BufferUsages::STORAGE,
         mapped_at_creation: false,
     });
-    let pass = ProbeShPass::new(&ctx, &probe, &frame, &instances, &[]);
+    let pass = ProbeShPass::new(&ctx, &probe, &frame, &instances, &[], n);
     let mut profiler = profiler(&ctx, false).unwrap();
     let mut rec = Recorder::new(&ctx, &mut profiler, "test/probe_sh");
     pass.record(&mut rec);
     ctx.queue.submit([rec.finish()]);
     let bytes = read_buffer(&ctx, &pass.coefficients).unwrap();
     let c: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
-    Sh9(std::array::from_fn(|i| Vec3::new(c[i][0], c[i][1], c[i][2])))
+    c[..n].iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect()
 }
 
 #[test]
 fn the_gpu_projects_the_probe_as_the_cpu_does() {
     let image = probe();
-    let gpu = gpu_coefficients(&image);
-    // The CPU projection of the same pyramid level (128 wide).
+    // The CPU projection of the same pyramid level (128 wide), bands 0–2 and 0–3.
     let pyramid = EquirectPyramid::new(&image);
     let level = pyramid.levels.iter().find(|l| l.width <= 128).unwrap();
-    let cpu = Sh9::project_equirect(level);
-    for (i, (g, c)) in gpu.0.iter().zip(cpu.0.iter()).enumerate() {
-        // Half-float texels: a few parts in a thousand of the largest coefficient.
-        assert!((*g - *c).abs().max_element() < 4e-3 * cpu.0[0].max_element(), "c{i}: GPU {g} CPU {c}");
+    let cpu = [project_equirect(level, basis9).to_vec(), project_equirect(level, basis16).to_vec()];
+    for cpu in cpu {
+        let gpu = gpu_coefficients(&image, cpu.len());
+        for (i, (g, c)) in gpu.iter().zip(&cpu).enumerate() {
+            // Half-float texels: a few parts in a thousand of the largest coefficient.
+            assert!(
+                (*g - *c).abs().max_element() < 4e-3 * cpu[0].max_element(),
+                "c{i} of {}: GPU {g} CPU {c}",
+                cpu.len()
+            );
+        }
     }
 }
 
@@ -78,7 +84,7 @@ fn sh_irradiance_of_the_probe_matches_direct_summation() {
     // The sun patch is sharp, so bands 0–2 ring a little on the far side: within 3 % of the
     // brightest irradiance (Ramamoorthi & Hanrahan's "under 3 %"), at normals all around.
     let image = probe();
-    let sh = gpu_coefficients(&image);
+    let sh = Sh9(gpu_coefficients(&image, 9).try_into().unwrap());
     let pyramid = EquirectPyramid::new(&image);
     let exact = irradiance_map(&pyramid, 32);
     let brightest = exact.pixels.iter().map(|p| Vec3::from(*p).max_element()).fold(0.0, f32::max);
@@ -126,30 +132,35 @@ fn prt_of_an_unoccluded_convex_object_is_plain_sh_irradiance() {
     // A virtual sphere under a probe brighter toward +x, seen from above: no self-shadowing,
     // so PRT's Σ c_i T_i is the SH irradiance (up to the bake's 256 rays and per-vertex
     // interpolation). Its transfer is baked into prt_cache.bin beside the session.
-    let sphere_of = |mode: &str| {
+    let sphere_of = |mode: &str, coefficients: u32| {
         let mut s = common::Setup::top_down(64);
         s.probe = Some([0.4, 0.45, 0.5]);
         s.probe_plus_x = Some([1.2, 1.0, 0.8]);
-        s.extra_toml += &format!("[ibl]\nvirtual = \"{mode}\"\n");
+        s.extra_toml += &format!("[ibl]\nvirtual = \"{mode}\"\nprt_coefficients = {coefficients}\n");
         let m = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
         let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.2, 32), Some(m), true);
         s.gltf.node(serde_json::json!({"name": "ball", "mesh": mesh, "extras": {"real": false}}));
         let (dir, session) = s.session();
         (common::Rendered::new(session), dir)
     };
-    let (sh, _) = sphere_of("sh");
-    let (prt, dir) = sphere_of("prt");
-    assert!(dir.path().join(mrshade_render::prt::cache::FILE_NAME).is_file(), "the bake is cached");
-    let mut compared = 0;
-    for y in 20..44 {
-        for x in 20..44 {
-            let (a, b) = (sh.l_rv(x, y), prt.l_rv(x, y));
-            if (x as f32 - 31.5).hypot(y as f32 - 31.5) > 9.0 {
-                continue;
+    let (sh, _) = sphere_of("sh", 9);
+    for coefficients in [9, 16] {
+        let (prt, dir) = sphere_of("prt", coefficients);
+        assert!(dir.path().join(mrshade_render::prt::cache::FILE_NAME).is_file(), "the bake is cached");
+        let mut compared = 0;
+        for y in 20..44 {
+            for x in 20..44 {
+                let (a, b) = (sh.l_rv(x, y), prt.l_rv(x, y));
+                if (x as f32 - 31.5).hypot(y as f32 - 31.5) > 9.0 {
+                    continue;
+                }
+                assert!(
+                    (a - b).abs().max_element() < 0.03 * a.max_element(),
+                    "{coefficients}: ({x}, {y}): SH {a} PRT {b}"
+                );
+                compared += 1;
             }
-            assert!((a - b).abs().max_element() < 0.03 * a.max_element(), "({x}, {y}): SH {a} PRT {b}");
-            compared += 1;
         }
+        assert!(compared > 200, "{compared} pixels on the sphere");
     }
-    assert!(compared > 200, "{compared} pixels on the sphere");
 }

@@ -111,10 +111,10 @@ fn sh_constants_match() {
         let text = source.split(&format!("const {name}: f32 = ")).nth(1).and_then(|s| s.split(';').next()).unwrap();
         assert!((text.parse::<f32>().unwrap() - value).abs() < 1e-6, "{name}");
     }
-    // sh9's band-2 factors.
-    use mrshade_core::sh::{Y2, Y20, Y22};
-    for value in [Y2, Y20, Y22] {
-        assert!(source.contains(&format!("{value}")), "sh9 uses {value}");
+    // sh9's band-2 factors, sh16's band-3 ones.
+    use mrshade_core::sh::{Y2, Y3, Y20, Y22, Y32};
+    for value in [Y2, Y20, Y22, Y32].into_iter().chain(Y3) {
+        assert!(source.contains(&format!("{value}")), "sh9 or sh16 uses {value}");
     }
 }
 

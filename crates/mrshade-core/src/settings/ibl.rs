@@ -51,11 +51,15 @@ pub struct IblSettings {
     pub samples: u32,
     /// Rays per vertex when baking PRT transfer (16–65536). Default 256.
     pub prt_samples: u32,
+    /// SH coefficients of PRT transfer and of the probe it is lit by: 9 (bands 0–2) or 16
+    /// (bands 0–3: sharper self-shadowing from a dominant light, spec §2.4, Franke Fig.
+    /// 4.11). Default 9.
+    pub prt_coefficients: u32,
 }
 
 impl Default for IblSettings {
     fn default() -> Self {
-        Self { virtual_shading: VirtualShading::Prefiltered, samples: 32, prt_samples: 256 }
+        Self { virtual_shading: VirtualShading::Prefiltered, samples: 32, prt_samples: 256, prt_coefficients: 9 }
     }
 }
 
@@ -71,6 +75,11 @@ impl IblSettings {
             (16..=65536).contains(&self.prt_samples),
             "ibl.prt_samples",
             format!("must be between 16 and 65536, got {}", self.prt_samples),
+        )?;
+        check(
+            matches!(self.prt_coefficients, 9 | 16),
+            "ibl.prt_coefficients",
+            format!("must be 9 or 16, got {}", self.prt_coefficients),
         )
     }
 }
@@ -85,6 +94,8 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("ibl.samples"));
         let bad = IblSettings { prt_samples: 8, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("ibl.prt_samples"));
+        let bad = IblSettings { prt_coefficients: 4, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("ibl.prt_coefficients"));
         IblSettings::default().validate().unwrap();
     }
 }

@@ -47,6 +47,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),
+    ("ibl.prt_coefficients", Kind::Number),
     ("dir.vpl_count", Kind::Number),
     ("dir.points_per_vpl", Kind::Number),
     ("dir.ism_resolution", Kind::Number),

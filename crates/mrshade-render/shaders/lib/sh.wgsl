@@ -29,6 +29,22 @@ fn sh9(d: vec3f) -> array<f32, 9> {
     );
 }
 
+// Bands 0–3, sixteen functions (mrshade_core::sh::basis16): 16-coefficient PRT.
+fn sh16(d: vec3f) -> array<f32, 16> {
+    let b = sh9(d);
+    let z2 = d.z * d.z;
+    return array<f32, 16>(
+        b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8],
+        0.5900436 * d.y * (3.0 * d.x * d.x - d.y * d.y),
+        2.8906114 * d.x * d.y * d.z,
+        0.4570458 * d.y * (5.0 * z2 - 1.0),
+        0.3731763 * d.z * (5.0 * z2 - 3.0),
+        0.4570458 * d.x * (5.0 * z2 - 1.0),
+        1.4453057 * d.z * (d.x * d.x - d.y * d.y),
+        0.5900436 * d.x * (d.x * d.x - 3.0 * d.y * d.y),
+    );
+}
+
 // Zonal coefficient Â_l of the clamped cosine for coefficient `i` (π, 2π/3, π/4 by band).
 fn sh9_clamped_cosine_band(i: u32) -> f32 {
     if (i == 0u) { return PI; }

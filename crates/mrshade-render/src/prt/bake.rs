@@ -1,19 +1,22 @@
 //! Diffuse precomputed radiance transfer with self-shadowing (Franke §2.4, Sloan et al.
 //! 2002), baked on the CPU per vertex of a rigid primitive in its object space:
-//! `T_i(p) = ∫ V(p, ω) max(0, n·ω) y_i(ω) dω`, so that under a distant probe of SH radiance
-//! coefficients `c_i` (in the same frame) the irradiance is `E(p) = Σ c_i T_i(p)`. Estimated
+//! `T_i(p) = ∫ V(p, ω) max(0, n·ω) y_i(ω) dω` for the first 9 or 16 SH functions, so that
+//! under a distant probe of SH radiance coefficients `c_i` (in the same frame) the irradiance
+//! is `E(p) = Σ c_i T_i(p)`. Estimated
 //! with `samples` cosine-distributed directions (Hammersley) per vertex, `T_i ≈ π/N Σ V·y_i`,
 //! `V` from rays against the primitive's own triangles (obvhs BVH).
 
 use glam::{Vec3, Vec3A};
-use mrshade_core::sh::basis9;
+use mrshade_core::sh::basis16;
 use mrshade_scene::Primitive;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::builder::build_cwbvh, ray::Ray, triangle::Triangle as BvhTriangle};
 use rayon::prelude::*;
 use std::f32::consts::PI;
 
-/// The transfer vector of every vertex of `primitive`.
-pub fn bake(primitive: &Primitive, samples: u32) -> Vec<[f32; 9]> {
+/// The transfer vectors of `primitive`'s vertices, `coefficients` (9 or 16) floats each, one
+/// vertex after the other.
+pub fn bake(primitive: &Primitive, samples: u32, coefficients: usize) -> Vec<f32> {
+    assert!(coefficients <= 16, "at most 16 SH coefficients");
     let tris: Vec<BvhTriangle> = primitive
         .indices
         .chunks_exact(3)
@@ -36,7 +39,7 @@ pub fn bake(primitive: &Primitive, samples: u32) -> Vec<[f32; 9]> {
         .zip(primitive.normals.par_iter())
         .map(|(&p, &n)| {
             let (t, b) = n.any_orthonormal_pair();
-            let mut transfer = [0.0f32; 9];
+            let mut transfer = vec![0.0f32; coefficients];
             for local in &directions {
                 let d = t * local.x + b * local.y + n * local.z;
                 let free = bvh.as_ref().is_none_or(|bvh| {
@@ -47,13 +50,14 @@ pub fn bake(primitive: &Primitive, samples: u32) -> Vec<[f32; 9]> {
                     })
                 });
                 if free {
-                    for (ti, yi) in transfer.iter_mut().zip(basis9(d)) {
+                    for (ti, yi) in transfer.iter_mut().zip(basis16(d)) {
                         *ti += yi;
                     }
                 }
             }
-            transfer.map(|t| t * PI / samples as f32)
+            transfer.into_iter().map(|t| t * PI / samples as f32).collect::<Vec<_>>()
         })
+        .flatten()
         .collect()
 }
 
@@ -69,7 +73,7 @@ fn cosine_direction(i: u32, n: u32) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mrshade_core::sh::Sh9;
+    use mrshade_core::sh::{Sh9, basis16};
 
     /// An untextured mesh of material 0.
     fn primitive(name: &str, positions: Vec<Vec3>, normals: Vec<Vec3>, indices: Vec<u32>) -> Primitive {
@@ -85,9 +89,9 @@ mod tests {
         }
     }
 
-    /// Σ c_i T_i: the irradiance the transfer `t` gives under `sh`.
-    fn shaded(sh: &Sh9, t: &[f32; 9]) -> Vec3 {
-        sh.0.iter().zip(t).map(|(c, t)| *c * *t).sum()
+    /// Σ c_i T_i: the irradiance the transfer `t` gives under the probe `c`.
+    fn shaded(c: &[Vec3; 16], t: &[f32]) -> Vec3 {
+        c.iter().zip(t).map(|(c, t)| *c * *t).sum()
     }
 
     /// A UV sphere of radius 1 with outward normals.
@@ -111,26 +115,52 @@ mod tests {
         primitive("sphere", positions.clone(), positions, indices)
     }
 
-    fn probe() -> Sh9 {
-        let mut c = [Vec3::ZERO; 9];
+    /// A probe with light in every band up to 3.
+    fn probe() -> [Vec3; 16] {
+        let mut c = [Vec3::ZERO; 16];
         c[0] = Vec3::new(2.0, 2.2, 2.6);
         c[2] = Vec3::new(0.8, 0.9, 1.0);
         c[3] = Vec3::new(-0.3, 0.1, 0.2);
         c[6] = Vec3::new(0.2, 0.1, -0.1);
-        Sh9(c)
+        c[10] = Vec3::new(0.3, -0.2, 0.1);
+        c[12] = Vec3::new(-0.4, 0.2, 0.3);
+        c
+    }
+
+    fn sh9(c: &[Vec3; 16]) -> Sh9 {
+        Sh9(std::array::from_fn(|i| c[i]))
     }
 
     #[test]
     fn an_unoccluded_convex_object_gets_plain_sh_irradiance() {
-        // A sphere never shadows itself: Σ c_i T_i(p) = Σ Â_l c_i y_i(n).
+        // A sphere never shadows itself: Σ c_i T_i(p) = Σ Â_l c_i y_i(n), with 9 or 16
+        // coefficients (the clamped cosine has no band 3: Â_3 = 0).
         let sphere = sphere(12, 24);
-        let transfer = bake(&sphere, 1024);
-        let sh = probe();
-        for (k, t) in transfer.iter().enumerate().step_by(17) {
-            let prt = shaded(&sh, t);
-            let want = sh.irradiance(sphere.normals[k]);
-            assert!((prt - want).abs().max_element() < 0.02 * want.max_element(), "vertex {k}: {prt} vs {want}");
+        let c = probe();
+        for n in [9, 16] {
+            let transfer = bake(&sphere, 1024, n);
+            for (k, t) in transfer.chunks_exact(n).enumerate().step_by(17) {
+                let prt = shaded(&c, t);
+                let want = sh9(&c).irradiance(sphere.normals[k]);
+                assert!(
+                    (prt - want).abs().max_element() < 0.02 * want.max_element(),
+                    "{n}, vertex {k}: {prt} vs {want}"
+                );
+            }
         }
+    }
+
+    #[test]
+    fn sixteen_coefficients_extend_nine() {
+        // The first nine of a 16-coefficient bake are the 9-coefficient bake's, and band 3
+        // of an unoccluded vertex is about zero.
+        let sphere = sphere(6, 12);
+        let (nine, sixteen) = (bake(&sphere, 256, 9), bake(&sphere, 256, 16));
+        for (a, b) in nine.chunks_exact(9).zip(sixteen.chunks_exact(16)) {
+            assert_eq!(a, &b[..9]);
+            assert!(b[9..].iter().all(|t| t.abs() < 0.05), "{b:?}");
+        }
+        assert_eq!(basis16(Vec3::Y)[..9], mrshade_core::sh::basis9(Vec3::Y));
     }
 
     #[test]
@@ -150,10 +180,12 @@ mod tests {
         }
         let normals = vec![Vec3::Y; positions.len()];
         let open_box = primitive("open box", positions, normals, indices);
-        let transfer = bake(&open_box, 1024);
-        let sh = probe();
-        let prt = shaded(&sh, &transfer[0]);
-        let open = sh.irradiance(Vec3::Y);
-        assert!(prt.x < 0.6 * open.x && prt.x > 0.05 * open.x, "{prt} vs unoccluded {open}");
+        let c = probe();
+        let open = sh9(&c).irradiance(Vec3::Y);
+        for n in [9, 16] {
+            let transfer = bake(&open_box, 1024, n);
+            let prt = shaded(&c, &transfer[..n]);
+            assert!(prt.x < 0.6 * open.x && prt.x > 0.05 * open.x, "{n}: {prt} vs unoccluded {open}");
+        }
     }
 }

@@ -1,27 +1,29 @@
 //! Baked transfer cached next to the session (`prt_cache.bin` in its folder): baked on first
-//! use, read afterwards. Keyed per primitive by a hash of its geometry and the sample count,
-//! so an edited model or another `ibl.prt_samples` bakes again; a cache that cannot be read
-//! or written costs a bake, never an error.
+//! use, read afterwards. Keyed per primitive by a hash of its geometry, the sample count and
+//! the coefficient count, so an edited model or another `ibl.prt_samples` or
+//! `ibl.prt_coefficients` bakes again; a cache that cannot be read or written costs a bake,
+//! never an error.
 
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 use std::path::Path;
 
-const MAGIC: &[u8; 8] = b"MRSPRT01";
+const MAGIC: &[u8; 8] = b"MRSPRT02";
 /// The cache's file name in the session's folder.
 pub const FILE_NAME: &str = "prt_cache.bin";
 
-/// Transfer vectors by key.
+/// Transfer vectors by key (all of a primitive's, one vertex after the other).
 #[derive(Default)]
 pub struct Cache {
-    entries: HashMap<u64, Vec<[f32; 9]>>,
+    entries: HashMap<u64, Vec<f32>>,
     changed: bool,
 }
 
-/// The key of a primitive's transfer at `samples`.
-pub fn key(primitive: &mrshade_scene::Primitive, samples: u32) -> u64 {
+/// The key of a primitive's transfer at `samples` rays and `coefficients` SH coefficients.
+pub fn key(primitive: &mrshade_scene::Primitive, samples: u32, coefficients: usize) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     samples.hash(&mut h);
+    coefficients.hash(&mut h);
     for p in primitive.positions.iter().chain(&primitive.normals) {
         p.to_array().map(f32::to_bits).hash(&mut h);
     }
@@ -36,9 +38,9 @@ impl Cache {
         Self { entries, changed: false }
     }
 
-    /// The transfer of `key` with `count` vertices, or bakes it with `bake`.
-    pub fn get_or_bake(&mut self, key: u64, count: usize, bake: impl FnOnce() -> Vec<[f32; 9]>) -> &[[f32; 9]] {
-        if self.entries.get(&key).is_none_or(|t| t.len() != count) {
+    /// The transfer of `key`, `floats` floats, or bakes it with `bake`.
+    pub fn get_or_bake(&mut self, key: u64, floats: usize, bake: impl FnOnce() -> Vec<f32>) -> &[f32] {
+        if self.entries.get(&key).is_none_or(|t| t.len() != floats) {
             self.entries.insert(key, bake());
             self.changed = true;
         }
@@ -55,17 +57,15 @@ impl Cache {
         for (key, transfer) in &self.entries {
             bytes.extend(key.to_le_bytes());
             bytes.extend((transfer.len() as u64).to_le_bytes());
-            for t in transfer {
-                for v in t {
-                    bytes.extend(v.to_le_bytes());
-                }
+            for v in transfer {
+                bytes.extend(v.to_le_bytes());
             }
         }
         std::fs::write(path, bytes)
     }
 }
 
-fn parse(bytes: &[u8]) -> Option<HashMap<u64, Vec<[f32; 9]>>> {
+fn parse(bytes: &[u8]) -> Option<HashMap<u64, Vec<f32>>> {
     let mut rest = bytes.strip_prefix(MAGIC)?;
     let u64_of = |rest: &mut &[u8]| -> Option<u64> {
         let (head, tail) = rest.split_first_chunk::<8>()?;
@@ -76,15 +76,14 @@ fn parse(bytes: &[u8]) -> Option<HashMap<u64, Vec<[f32; 9]>>> {
     let mut entries = HashMap::new();
     for _ in 0..count {
         let key = u64_of(&mut rest)?;
-        let vertices = usize::try_from(u64_of(&mut rest)?).ok()?;
-        let floats = vertices.checked_mul(9)?;
+        let floats = usize::try_from(u64_of(&mut rest)?).ok()?;
         if rest.len() < floats.checked_mul(4)? {
             return None;
         }
         let (data, tail) = rest.split_at(floats * 4);
         rest = tail;
         let values: Vec<f32> = data.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-        entries.insert(key, values.chunks_exact(9).map(|c| std::array::from_fn(|i| c[i])).collect());
+        entries.insert(key, values);
     }
     rest.is_empty().then_some(entries)
 }
@@ -99,10 +98,10 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join(FILE_NAME);
         let mut cache = Cache::default();
-        let t = cache.get_or_bake(7, 2, || vec![[1.0; 9], [2.0; 9]]).to_vec();
+        let t = cache.get_or_bake(7, 18, || [[1.0; 9], [2.0; 9]].concat()).to_vec();
         cache.write_if_changed(&path).unwrap();
         let mut again = Cache::read(&path);
-        let back = again.get_or_bake(7, 2, || panic!("baked again")).to_vec();
+        let back = again.get_or_bake(7, 18, || panic!("baked again")).to_vec();
         assert_eq!(back, t);
         std::fs::write(&path, b"MRSPRT01garbage").unwrap();
         assert!(Cache::read(&path).entries.is_empty());

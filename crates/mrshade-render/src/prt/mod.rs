@@ -19,12 +19,14 @@ use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
 
-/// The scene's baked transfer: which instances have it, and nine floats per vertex of the
-/// scene's vertex buffer.
+/// The scene's baked transfer: which instances have it, and `coefficients` floats per vertex
+/// of the scene's vertex buffer.
 pub struct Transfer {
     /// Scene instance indices with transfer, in the order of their SH frames (1, 2, …).
     pub instances: Vec<u32>,
-    /// Nine floats per vertex (zero for primitives without transfer).
+    /// SH coefficients per vertex: 9 or 16 (`ibl.prt_coefficients`).
+    pub coefficients: usize,
+    /// `coefficients` floats per vertex (zero for primitives without transfer).
     pub per_vertex: Vec<f32>,
     /// What could not be done (the cache not written).
     pub warnings: Vec<String>,
@@ -32,13 +34,14 @@ pub struct Transfer {
 
 impl Transfer {
     /// Bakes (or reads from the session folder's cache) the transfer of every rigid virtual
-    /// instance's primitive, `samples` rays per vertex.
-    pub fn of(session: &Session, geometry: &Geometry, samples: u32) -> Self {
+    /// instance's primitive, `samples` rays per vertex, `coefficients` SH coefficients.
+    pub fn of(session: &Session, geometry: &Geometry, samples: u32, coefficients: usize) -> Self {
         let scene = &session.scene;
         let cache_path = session.folder.as_ref().map(|f| f.join(cache::FILE_NAME));
         let mut store = cache_path.as_deref().map(cache::Cache::read).unwrap_or_default();
         let vertex_count: usize = scene.primitives.iter().map(|p| p.positions.len()).sum();
-        let mut per_vertex = vec![0.0f32; vertex_count * 9];
+        let n = coefficients;
+        let mut per_vertex = vec![0.0f32; vertex_count * n];
         let mut baked = vec![false; scene.primitives.len()];
         let mut instances = Vec::new();
         for (i, inst) in scene.instances.iter().enumerate() {
@@ -50,12 +53,10 @@ impl Transfer {
             if std::mem::replace(&mut baked[inst.primitive], true) {
                 continue;
             }
-            let key = cache::key(prim, samples);
-            let transfer = store.get_or_bake(key, prim.positions.len(), || bake(prim, samples));
-            let base = geometry.base_vertex[inst.primitive] as usize * 9;
-            for (k, t) in transfer.iter().enumerate() {
-                per_vertex[base + k * 9..base + k * 9 + 9].copy_from_slice(t);
-            }
+            let key = cache::key(prim, samples, n);
+            let transfer = store.get_or_bake(key, prim.positions.len() * n, || bake(prim, samples, n));
+            let base = geometry.base_vertex[inst.primitive] as usize * n;
+            per_vertex[base..base + transfer.len()].copy_from_slice(transfer);
         }
         let mut warnings = Vec::new();
         if let Some(path) = &cache_path
@@ -63,7 +64,7 @@ impl Transfer {
         {
             warnings.push(format!("cannot cache the baked PRT at {} ({e}); it will be baked again", path.display()));
         }
-        Self { instances, per_vertex, warnings }
+        Self { instances, coefficients, per_vertex, warnings }
     }
 }
 
@@ -99,8 +100,13 @@ impl PrtPass {
             })
         };
         let mut per_vertex = transfer.per_vertex.clone();
-        per_vertex.resize(per_vertex.len().max(9), 0.0);
+        per_vertex.resize(per_vertex.len().max(16), 0.0);
         let transfer_buffer = storage("prt/transfer", bytemuck::cast_slice(&per_vertex));
+        let coefficients = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("prt/coefficients"),
+            contents: bytemuck::bytes_of(&glam::UVec4::new(transfer.coefficients as u32, 0, 0, 0)),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
         let mut frames = vec![0u32; geometry.instance_count().max(1)];
         for (k, &i) in transfer.instances.iter().enumerate() {
             frames[i as usize] = k as u32 + 1;
@@ -116,6 +122,7 @@ impl PrtPass {
         let mut entries = vec![bind::uniform(0, cs)];
         entries.extend((1..9).map(|b| bind::storage(b, cs)));
         entries.push(bind::storage_texture(9, wgpu::TextureFormat::Rgba16Float));
+        entries.push(bind::uniform(10, cs));
         let layout = bind::layout(device, "prt/layout", &entries);
         let group = bind::group(
             device,
@@ -132,6 +139,7 @@ impl PrtPass {
                 frames.as_entire_binding(),
                 probe_sh.coefficients.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&irradiance.view),
+                coefficients.as_entire_binding(),
             ],
         );
         let pipeline = mrshade_gpu::shader::compute_pipeline(device, "prt", SHADER, &[&layout]);

@@ -1,8 +1,8 @@
-//! The probe's nine SH coefficients on the GPU, every frame (Franke §2.1): what the `sh`,
-//! `fis` and `prt` shading of virtual objects (`[ibl] virtual`) reads for their diffuse
-//! light. Inputs: the probe's box-filtered pyramid, the frame (probe rotation), the
-//! instances (their rotation). Output: `coefficients`, nine RGB in the probe's frame, then
-//! nine per PRT instance in its object frame.
+//! The probe's SH coefficients on the GPU, every frame (Franke §2.1): what the `sh`, `fis`
+//! and `prt` shading of virtual objects (`[ibl] virtual`) reads for their diffuse light.
+//! Inputs: the probe's box-filtered pyramid, the frame (probe rotation), the instances (their
+//! rotation). Output: `coefficients`, 9 or 16 (`ibl.prt_coefficients`) RGB in the probe's
+//! frame, then as many per PRT instance in its object frame.
 
 use crate::scene_gpu::GpuProbe;
 use glam::UVec4;
@@ -10,15 +10,15 @@ use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use wgpu::util::DeviceExt;
 
-/// Widest pyramid level projected: band 2 needs no finer texels.
+/// Widest pyramid level projected: bands 2 and 3 need no finer texels.
 const SOURCE_WIDTH: u32 = 128;
 
 /// The projection pass and its output.
 pub struct ProbeShPass {
     /// One workgroup per frame (the probe's, then each PRT instance's).
     dispatch: Dispatch,
-    /// Nine `vec4f` per frame (rgb: radiance coefficient `c_i` of the unscaled probe), the
-    /// probe's own first, then each of `prt_instances`' object frames.
+    /// 9 or 16 `vec4f` per frame (rgb: radiance coefficient `c_i` of the unscaled probe),
+    /// the probe's own first, then each of `prt_instances`' object frames.
     pub coefficients: wgpu::Buffer,
 }
 
@@ -26,20 +26,24 @@ impl ProbeShPass {
     /// GPU timing label.
     pub const LABEL: &'static str = "probe-sh";
 
-    /// Binds `probe`'s pyramid; also projects it into the object frames of `prt_instances`
-    /// (indices into `instances`, the scene's `GpuInstance`s).
+    /// Binds `probe`'s pyramid; projects it onto `coefficients` (9 or 16) SH functions, also
+    /// into the object frames of `prt_instances` (indices into `instances`, the scene's
+    /// `GpuInstance`s).
     pub fn new(
         ctx: &GpuContext,
         probe: &GpuProbe,
         frame: &wgpu::Buffer,
         instances: &wgpu::Buffer,
         prt_instances: &[u32],
+        coefficients: usize,
     ) -> Self {
+        assert!(coefficients == 9 || coefficients == 16, "9 or 16 SH coefficients");
         let device = &ctx.device;
         let cs = wgpu::ShaderStages::COMPUTE;
         let size = probe.pyramid.size();
         let level = (0..probe.pyramid_mips).find(|l| size.0 >> l <= SOURCE_WIDTH).unwrap_or(probe.pyramid_mips - 1);
-        let source = UVec4::new(level, (size.0 >> level).max(1), (size.1 >> level).max(1), 0);
+        let n = coefficients as u32;
+        let source = UVec4::new(level, (size.0 >> level).max(1), (size.1 >> level).max(1), n);
         let source = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("probe_sh/source"),
             contents: bytemuck::bytes_of(&source),
@@ -55,7 +59,7 @@ impl ProbeShPass {
         });
         let coefficients = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("probe_sh/coefficients"),
-            size: frames as u64 * 9 * 16,
+            size: (frames * n) as u64 * 16,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });

@@ -1,5 +1,6 @@
 // The probe's SH radiance coefficients c_i = Σ L(t)·y_i(ω_t)·dω_t over every texel of a
-// coarse level of its box-filtered pyramid (Franke §2.1, Eq. 4.8, by summation), unscaled
+// coarse level of its box-filtered pyramid (Franke §2.1, Eq. 4.8, by summation), 9 or 16
+// (bands 0–3, for 16-coefficient PRT) per frame, unscaled
 // (intensity applies at lookup). Workgroup 0 projects in the probe's own frame (rotation
 // applies at lookup); workgroup k > 0 in the object frame of the k-th instance with baked
 // transfer (PRT, spec §2.4: "SH light vector with rotation into object space"). Each
@@ -7,9 +8,9 @@
 // frame, so a probe that changes on the GPU and objects that turn are followed.
 
 @group(0) @binding(0) var pyramid: texture_2d<f32>;
-// Nine per workgroup.
+// `source.w` (9 or 16) per workgroup.
 @group(0) @binding(1) var<storage, read_write> coefficients: array<vec4f>;
-// level, width, height, unused
+// level, width, height, coefficients per frame
 @group(0) @binding(2) var<uniform> source: vec4u;
 @group(0) @binding(3) var<uniform> frame: Frame;
 @group(0) @binding(4) var<storage, read> instances: array<Instance>;
@@ -41,18 +42,19 @@ fn cs_main(@builtin(local_invocation_index) t: u32, @builtin(workgroup_id) group
     let w = source.y;
     let h = source.z;
 
-    var c: array<vec3f, 9>;
+    let n = source.w;
+    var c: array<vec3f, 16>;
     for (var i = t; i < w * h; i += THREADS) {
         let x = i % w;
         let y = i / w;
         let l = textureLoad(pyramid, vec2i(i32(x), i32(y)), i32(source.x)).rgb;
         let d_omega = 2.0 * PI / f32(w) * (cos(PI * f32(y) / f32(h)) - cos(PI * f32(y + 1u) / f32(h)));
-        let b = sh9(frame_dir(group.x, dir_from_equirect((vec2f(f32(x), f32(y)) + 0.5) / vec2f(f32(w), f32(h)))));
-        for (var k = 0u; k < 9u; k++) {
+        let b = sh16(frame_dir(group.x, dir_from_equirect((vec2f(f32(x), f32(y)) + 0.5) / vec2f(f32(w), f32(h)))));
+        for (var k = 0u; k < n; k++) {
             c[k] += l * (b[k] * d_omega);
         }
     }
-    for (var k = 0u; k < 9u; k++) {
+    for (var k = 0u; k < n; k++) {
         partial[t] = vec4f(c[k], 0.0);
         workgroupBarrier();
         for (var stride = THREADS / 2u; stride > 0u; stride /= 2u) {
@@ -62,7 +64,7 @@ fn cs_main(@builtin(local_invocation_index) t: u32, @builtin(workgroup_id) group
             workgroupBarrier();
         }
         if (t == 0u) {
-            coefficients[group.x * 9u + k] = partial[0];
+            coefficients[group.x * n + k] = partial[0];
         }
         workgroupBarrier();
     }
