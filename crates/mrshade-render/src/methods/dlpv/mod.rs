@@ -62,7 +62,7 @@ const FIXED_POINT_RANGE: f32 = (1u32 << 29) as f32;
 /// The method's passes and volumes.
 pub struct DlpvMethod {
     params: DlpvParams,
-    /// Per dispatch of seeding (0) and propagation (1, 2, …: two steps each): its uniform (its first step).
+    /// Per dispatch of seeding (0) and propagation (1, 2, …): its uniform (the step).
     step_params: Vec<wgpu::Buffer>,
     extent: f32,
     scene_box: Option<(Vec3, Vec3)>,
@@ -72,7 +72,7 @@ pub struct DlpvMethod {
     inject: wgpu::ComputePipeline,
     seed: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
-    /// Seeding, then one dispatch per two propagation steps: their groups.
+    /// Seeding, then one dispatch per propagation step: their groups.
     dispatches: Vec<wgpu::BindGroup>,
     /// The sums every dispatch chain starts from (cleared before seeding).
     first_sums: wgpu::Buffer,
@@ -89,18 +89,6 @@ pub struct DlpvMethod {
 /// Builds the method (the registry's `build`).
 pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DlpvMethod::new(inputs))
-}
-
-/// Workgroups of the seeding of `cells` cells: x: cells; y: accumulated volume × channel.
-pub fn seed_workgroups(cells: u32) -> [u32; 3] {
-    [cells.div_ceil(64), 3 * VOLUMES as u32, 1]
-}
-
-/// Workgroups of a propagation dispatch (two steps) of a `resolution`³ volume: tiles of 4³
-/// cells in x and y, and in z × accumulated volume × channel (propagate.wgsl).
-pub fn propagate_workgroups(resolution: u32) -> [u32; 3] {
-    let tiles = resolution.div_ceil(4);
-    [tiles, tiles, tiles * 3 * VOLUMES as u32]
 }
 
 /// The layout of seeding and propagation (propagate.wgsl's group 0): the uniform, the
@@ -214,10 +202,8 @@ impl DlpvMethod {
             })
         };
         let max_steps = params.steps.max_element();
-        // Dispatch 0 seeds; dispatch k ≥ 1 takes steps 2k − 1 and 2k (propagate.wgsl).
-        let step_params: Vec<wgpu::Buffer> = (0..=max_steps.div_ceil(2))
-            .map(|k| {
-                let step = (2 * k).saturating_sub(1);
+        let step_params: Vec<wgpu::Buffer> = (0..=max_steps)
+            .map(|step| {
                 uniform(
                     &format!("dlpv/params_step{step}"),
                     &DlpvParams { info: UVec4::new(res, cells, step, 0), ..params },
@@ -304,7 +290,7 @@ impl DlpvMethod {
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
         // Dispatch k reads scratch and sums k mod 2 and writes the others (a seed reads no
         // scratch: the other one stands in for its unused `source`).
-        let dispatches: Vec<wgpu::BindGroup> = (0..step_params.len())
+        let dispatches: Vec<wgpu::BindGroup> = (0..=max_steps as usize)
             .map(|k| {
                 let (read, write) = (k % 2, 1 - k % 2);
                 bind::group(
@@ -322,7 +308,7 @@ impl DlpvMethod {
                 )
             })
             .collect();
-        let volumes = sums[dispatches.len() % 2].clone();
+        let volumes = sums[(max_steps as usize + 1) % 2].clone();
         let first_sums = sums[0].clone();
 
         // The per-pixel merge.
@@ -462,15 +448,10 @@ impl LightTransport for DlpvMethod {
             });
             rec.compute(Self::PROPAGATE_LABEL, |pass| {
                 for (k, group) in self.dispatches.iter().enumerate() {
+                    pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
-                    let [x, y, z] = if k == 0 {
-                        pass.set_pipeline(&self.seed);
-                        seed_workgroups(cells)
-                    } else {
-                        pass.set_pipeline(&self.propagate);
-                        propagate_workgroups(self.params.info.x)
-                    };
-                    pass.dispatch_workgroups(x, y, z);
+                    // x: cells; y: accumulated volume × channel.
+                    pass.dispatch_workgroups(cells.div_ceil(64), 3 * VOLUMES as u32, 1);
                 }
             });
         }

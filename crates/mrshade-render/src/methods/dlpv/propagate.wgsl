@@ -5,7 +5,7 @@
 // side face; the 30 sum to 4π, so an isotropic cell passes on all its flux), re-emitted
 // from the face as a point light ⟨n_face, ω⟩₊·flux/π. V_ρ clamps negative flux (a regular
 // LPV); the delta volume keeps it (antiradiance). Each step's result is added to the
-// accumulated volume. Every source moves in the same dispatch, two steps per dispatch (the
+// accumulated volume. Every source moves in the same dispatch, one dispatch per step (the
 // per-dispatch cost, not the cells, bounds a 32³ volume). `seed` turns the fixed-point
 // injection into the first step; only the
 // direct change keeps the injected cells themselves in the result (the shadow lies on the
@@ -63,14 +63,13 @@ fn add_face(flux: f32, face: vec3f, clamp_negative: bool, sum: ptr<function, vec
     *sum += vec4f(f, f * face);
 }
 
-// The light that a cell's six neighbours send into it in one step, from their coefficients
-// `c` (index 2·axis + k: the neighbour behind along +axis for k = 0, along −axis for k = 1;
-// zero outside the volume). Each neighbour's intensity toward a face centre is
-// Y0·c0 + Y1·⟨(c3, c1, c2), ω⟩; with ω = flow (the far face) or 0.894·flow + 0.447·face (a
-// side face) it needs no normalising: 30 faces of dot products of axes, not 30 normalised
-// directions and SH evaluations (the step took 39 µs at 32³ on an H200, its arithmetic
-// rather than its memory).
-fn gather_neighbours(c: array<vec4f, 6>, clamp_negative: bool) -> vec4f {
+// The light of source `s`, channel `ch`, that the neighbours send into `cell` in one step.
+// Each neighbour's intensity toward a face centre is Y0·c0 + Y1·⟨(c3, c1, c2), ω⟩; with
+// ω = flow (the far face) or 0.894·flow + 0.447·face (a side face) it needs no normalising:
+// 30 faces of dot products of axes, not 30 normalised directions and SH evaluations (the
+// step took 39 µs at 32³ on an H200, its arithmetic rather than its memory).
+fn gather_from(s: u32, ch: u32, cell: vec3i) -> vec4f {
+    let clamp_negative = s == SOURCE_RHO || s == SOURCE_MU;
     // (Σ flux, Σ flux·face) over the faces, then the lobe's constants.
     var sum = vec4f(0.0);
     for (var i = 0u; i < 3u; i++) {
@@ -80,9 +79,11 @@ fn gather_neighbours(c: array<vec4f, 6>, clamp_negative: bool) -> vec4f {
         for (var k = 0u; k < 2u; k++) {
             // Light flowing along `flow` from the neighbour behind.
             let flow = select(axis, -axis, k == 1u);
-            let n = c[2u * i + k];
-            let band1 = SH_Y1 * vec3f(n.w, n.y, n.z);
-            let base = SH_Y0 * n.x;
+            let from_cell = cell - vec3i(flow);
+            if (!cell_inside(from_cell)) { continue; }
+            let c = source[at(s, ch, cell_index(from_cell))];
+            let band1 = SH_Y1 * vec3f(c.w, c.y, c.z);
+            let base = SH_Y0 * c.x;
             let along = dot(band1, flow);
             add_face(FAR_FACE_SOLID_ANGLE * (base + along), flow, clamp_negative, &sum);
             let side = base + SIDE_ALONG * along;
@@ -96,26 +97,6 @@ fn gather_neighbours(c: array<vec4f, 6>, clamp_negative: bool) -> vec4f {
     }
     // SH order (Y0, y, z, x).
     return vec4f(SH_Y0 * sum.x, LOBE_BAND1 * vec3f(sum.z, sum.w, sum.y));
-}
-
-// The neighbour behind `cell` along the flow of slot `slot` of gather_neighbours.
-fn behind(cell: vec3i, slot: u32) -> vec3i {
-    let axis = vec3i(AXES[slot / 2u]);
-    return select(cell - axis, cell + axis, (slot & 1u) == 1u);
-}
-
-// Whether source `s` keeps negative light (the changes: antiradiance) or clamps it (V_ρ, V_μ:
-// regular LPVs).
-fn clamps_negative(s: u32) -> bool { return s == SOURCE_RHO || s == SOURCE_MU; }
-
-// One step of source `s`, channel `ch`, into `cell`, from the previous step's volume.
-fn gather_from(s: u32, ch: u32, cell: vec3i) -> vec4f {
-    var c: array<vec4f, 6>;
-    for (var slot = 0u; slot < 6u; slot++) {
-        let from_cell = behind(cell, slot);
-        if (cell_inside(from_cell)) { c[slot] = source[at(s, ch, cell_index(from_cell))]; }
-    }
-    return gather_neighbours(c, clamps_negative(s));
 }
 
 // The injected coefficients of source `s`, channel `ch`, in `cell`.
@@ -145,60 +126,21 @@ fn seed(@builtin(global_invocation_id) id: vec3u) {
     sum_out[at(v, ch, cell)] = sum_in[at(v, ch, cell)] + added;
 }
 
-// Two steps per dispatch (the per-dispatch cost, not the cells, bounds a 32³ volume: 14 µs a
-// step on an H200, most of it the launch and the barrier). A workgroup owns a tile of
-// TILE³ cells of one accumulated volume × channel; it gathers the first step over the tile
-// and a one-cell border into workgroup memory, then the second step of its tile from
-// there: the same sums as two dispatches, in half of them. The dispatch's steps are
-// `params.info.z` and the next; a source with fewer steps left takes one.
-const TILE: u32 = 4u;
-const BORDERED: u32 = TILE + 2u;
-var<workgroup> first_step: array<vec4f, BORDERED * BORDERED * BORDERED>;
-
-fn bordered_cell(tile: vec3u, k: u32) -> vec3i {
-    let b = vec3u(k % BORDERED, (k / BORDERED) % BORDERED, k / (BORDERED * BORDERED));
-    return vec3i(tile * TILE + b) - vec3i(1);
-}
-
-// Workgroups: (tiles, tiles, tiles · 3 · VOLUMES), tiles = ⌈res / TILE⌉ (propagate_workgroups
-// in mod.rs).
 @compute @workgroup_size(64)
-fn propagate(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) local: u32) {
-    let slice = group.z % (3u * VOLUMES);
-    let v = slice / 3u;
-    let ch = slice % 3u;
-    let tile = vec3u(group.xy, group.z / (3u * VOLUMES));
-    let mine = vec3u(local % TILE, (local / TILE) % TILE, local / (TILE * TILE));
-    let cell = vec3i(tile * TILE + mine);
-    // The cell's slot in the bordered tile.
-    let slot = ((mine.z + 1u) * BORDERED + mine.y + 1u) * BORDERED + mine.x + 1u;
-    let inside = cell_inside(cell);
+fn propagate(@builtin(global_invocation_id) id: vec3u) {
+    let index = id.x;
+    if (index >= cells() || id.y >= 3u * VOLUMES) { return; }
+    let v = id.y / 3u;
+    let ch = id.y % 3u;
+    let cell = cell_of(index);
+    // This dispatch's step (from 1).
     let step = params.info.z;
     var added = vec4f(0.0);
     for (var s = 0u; s < SOURCES; s++) {
-        // Uniform over the workgroup: every invocation reaches the barriers.
         if ((sources_of(v) & (1u << s)) == 0u || step > params.steps[s]) { continue; }
-        for (var k = local; k < BORDERED * BORDERED * BORDERED; k += 64u) {
-            let c = bordered_cell(tile, k);
-            first_step[k] = select(vec4f(0.0), gather_from(s, ch, c), cell_inside(c));
-        }
-        workgroupBarrier();
-        var result = first_step[slot];
-        added += result;
-        if (step + 1u <= params.steps[s]) {
-            var c: array<vec4f, 6>;
-            for (var n = 0u; n < 6u; n++) {
-                let b = behind(vec3i(mine) + vec3i(1), n);
-                c[n] = first_step[(u32(b.z) * BORDERED + u32(b.y)) * BORDERED + u32(b.x)];
-            }
-            result = gather_neighbours(c, clamps_negative(s));
-            added += result;
-        }
-        if (inside) { destination[at(s, ch, cell_index(cell))] = result; }
-        workgroupBarrier();
+        let gathered = gather_from(s, ch, cell);
+        destination[at(s, ch, index)] = gathered;
+        added += gathered;
     }
-    if (inside) {
-        let index = cell_index(cell);
-        sum_out[at(v, ch, index)] = sum_in[at(v, ch, index)] + added;
-    }
+    sum_out[at(v, ch, index)] = sum_in[at(v, ch, index)] + added;
 }
