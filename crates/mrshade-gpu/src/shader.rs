@@ -37,6 +37,20 @@ pub fn compute_pipeline_entry(
     entry: &str,
     layouts: &[&wgpu::BindGroupLayout],
 ) -> wgpu::ComputePipeline {
+    compute_pipeline_with(device, label, source, entry, layouts, &[])
+}
+
+/// A compute pipeline running `entry` of `source` with its pipeline-overridable constants
+/// (`override NAME: T = …;`) set to `constants`: compile-time values to the driver, so that
+/// loops bounded by them unroll.
+pub fn compute_pipeline_with(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+    layouts: &[&wgpu::BindGroupLayout],
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
     let module = create_module(device, &format!("{label}/shader"), source);
     let layouts: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(|l| Some(*l)).collect();
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -49,7 +63,7 @@ pub fn compute_pipeline_entry(
         layout: Some(&pipeline_layout),
         module: &module,
         entry_point: Some(entry),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
         cache: None,
     })
 }

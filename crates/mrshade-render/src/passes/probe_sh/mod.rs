@@ -43,7 +43,7 @@ impl ProbeShPass {
         let size = probe.pyramid.size();
         let level = (0..probe.pyramid_mips).find(|l| size.0 >> l <= SOURCE_WIDTH).unwrap_or(probe.pyramid_mips - 1);
         let n = coefficients as u32;
-        let source = UVec4::new(level, (size.0 >> level).max(1), (size.1 >> level).max(1), n);
+        let source = UVec4::new(level, (size.0 >> level).max(1), (size.1 >> level).max(1), 0);
         let source = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("probe_sh/source"),
             contents: bytemuck::bytes_of(&source),
@@ -93,7 +93,14 @@ impl ProbeShPass {
                 prt_instances.as_entire_binding(),
             ],
         );
-        let pipeline = mrshade_gpu::shader::compute_pipeline(device, "probe_sh", SHADER, &[&layout]);
+        let pipeline = mrshade_gpu::shader::compute_pipeline_with(
+            device,
+            "probe_sh",
+            SHADER,
+            "cs_main",
+            &[&layout],
+            &[("COEFFICIENTS", n as f64)],
+        );
         Self { dispatch: Dispatch { pipeline, groups: vec![group], workgroups: [frames, 1, 1] }, coefficients }
     }
 

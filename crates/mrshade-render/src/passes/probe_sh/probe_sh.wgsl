@@ -8,9 +8,9 @@
 // frame, so a probe that changes on the GPU and objects that turn are followed.
 
 @group(0) @binding(0) var pyramid: texture_2d<f32>;
-// `source.w` (9 or 16) per workgroup.
+// COEFFICIENTS per workgroup.
 @group(0) @binding(1) var<storage, read_write> coefficients: array<vec4f>;
-// level, width, height, coefficients per frame
+// level, width, height, unused
 @group(0) @binding(2) var<uniform> source: vec4u;
 @group(0) @binding(3) var<uniform> frame: Frame;
 @group(0) @binding(4) var<storage, read> instances: array<Instance>;
@@ -18,6 +18,9 @@
 @group(0) @binding(5) var<storage, read> prt_instances: array<u32>;
 
 const THREADS: u32 = 256u;
+// 9 or 16, set when the pipeline is made (a constant to the driver: the loops over it unroll
+// into registers; a uniform bound cost the 9-coefficient projection half again).
+override COEFFICIENTS: u32 = 9u;
 
 var<workgroup> partial: array<vec4f, THREADS>;
 
@@ -42,16 +45,23 @@ fn cs_main(@builtin(local_invocation_index) t: u32, @builtin(workgroup_id) group
     let w = source.y;
     let h = source.z;
 
-    let n = source.w;
+    let n = COEFFICIENTS;
     var c: array<vec3f, 16>;
     for (var i = t; i < w * h; i += THREADS) {
         let x = i % w;
         let y = i / w;
         let l = textureLoad(pyramid, vec2i(i32(x), i32(y)), i32(source.x)).rgb;
         let d_omega = 2.0 * PI / f32(w) * (cos(PI * f32(y) / f32(h)) - cos(PI * f32(y + 1u) / f32(h)));
-        let b = sh16(frame_dir(group.x, dir_from_equirect((vec2f(f32(x), f32(y)) + 0.5) / vec2f(f32(w), f32(h)))));
-        for (var k = 0u; k < n; k++) {
+        let d = frame_dir(group.x, dir_from_equirect((vec2f(f32(x), f32(y)) + 0.5) / vec2f(f32(w), f32(h))));
+        let b = sh9(d);
+        for (var k = 0u; k < 9u; k++) {
             c[k] += l * (b[k] * d_omega);
+        }
+        if (n == 16u) {
+            let b16 = sh16(d);
+            for (var k = 9u; k < 16u; k++) {
+                c[k] += l * (b16[k] * d_omega);
+            }
         }
     }
     for (var k = 0u; k < n; k++) {
