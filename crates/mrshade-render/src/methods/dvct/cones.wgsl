@@ -21,9 +21,10 @@ fn volume_span(o: vec3f, d: vec3f) -> vec2f {
 
 // Marches from `o` along unit `d` with steps as long as the cone is wide (`aperture`: its
 // diameter per unit length), sampling the mip level whose voxels match that width, from `start`
-// until both solutions are opaque or the cone leaves the volume. Outside the volume there is
-// nothing: what a cone does not hit there is the probe's (its opacity says how much).
-fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32) -> Cone {
+// until both solutions are opaque or the cone leaves the volume, its samples kept clear of the
+// plane of normal `n` through the surface it leaves. Outside the volume there is nothing:
+// what a cone does not hit there is the probe's (its opacity says how much).
+fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
     var out = Cone(vec4f(0.0), vec4f(0.0));
     let span = volume_span(o, d);
     let voxel = voxel_side();
@@ -34,7 +35,17 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32) -> Cone {
         if (t >= span.y || (out.rv.a >= 0.99 && out.r.a >= 0.99)) { break; }
         let diameter = max(voxel, aperture * t);
         let lod = min(log2(diameter / voxel), max_lod);
-        let uvw = (o + d * t - params.origin.xyz) * extent;
+        // A sample as wide as the cone, lifted off the plane of the surface it starts from
+        // (normal `n`) until its trilinear footprint (a voxel of the sample's level, the
+        // cone's diameter D, either side of it) no longer reaches that plane's voxels
+        // (within D/2 of the plane): its centre at least 1.5·D above the plane. A wide cone
+        // leaving at 55° from the normal otherwise filters its own surface's voxels in at
+        // coarse levels (spec §2.13.9: cones "self-intersect at grazing angles"), the
+        // surface shadowing and lighting itself: the desk under desk-spot-virtual's lamp lit
+        // itself 2–3 % too bright around the sphere.
+        let along = o + d * t;
+        let height = dot(d, n) * t + CONE_START_VOXELS * voxel;
+        let uvw = (along + n * max(1.5 * diameter - height, 0.0) - params.origin.xyz) * extent;
         let s_rv = textureSampleLevel(volume_rv, volume_sampler, uvw, lod);
         let s_r = textureSampleLevel(volume_r, volume_sampler, uvw, lod);
         out.rv += (1.0 - out.rv.a) * s_rv;
@@ -64,7 +75,8 @@ fn diffuse_cone(n: vec3f, k: u32) -> vec4f {
 
 // Where the cones of a surface at `p` with normal `n` start: one voxel off the surface, so
 // that it does not see its own voxels.
-fn cone_origin(p: vec3f, n: vec3f) -> vec3f { return p + n * (2.0 * voxel_side()); }
+fn cone_origin(p: vec3f, n: vec3f) -> vec3f { return p + n * (CONE_START_VOXELS * voxel_side()); }
+const CONE_START_VOXELS: f32 = 2.0;
 
 // Roughness of the probe lookup that stands for a diffuse cone's solid angle.
 const CONE_PROBE_ROUGHNESS: f32 = 0.7;
@@ -86,7 +98,7 @@ fn gather_diffuse(p: vec3f, n: vec3f) -> Gathered {
     let o = cone_origin(p, n);
     for (var k = 0u; k < DIFFUSE_CONES; k++) {
         let c = diffuse_cone(n, k);
-        let hit = trace_cone(o, c.xyz, params.cone.x, voxel_side());
+        let hit = trace_cone(o, c.xyz, params.cone.x, voxel_side(), n);
         out.rv += c.w * hit.rv.rgb;
         out.r += c.w * hit.r.rgb;
         let w = c.w * env_radiance_at(frame, c.xyz, CONE_PROBE_ROUGHNESS);

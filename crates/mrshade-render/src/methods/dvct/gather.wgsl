@@ -57,7 +57,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     var l_r = diffuse * e.r;
     if (!is_traced(m)) {
         let d = reflect(-s.view, s.normal);
-        let hit = trace_cone(o, d, specular_aperture(s.roughness), voxel_side());
+        let hit = trace_cone(o, d, specular_aperture(s.roughness), voxel_side(), s.normal);
         l_rv += specular_albedo * hit.rv.rgb;
         l_r += specular_albedo * hit.r.rgb;
     }
