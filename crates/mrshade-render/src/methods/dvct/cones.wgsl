@@ -43,9 +43,9 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
         // coarse levels (spec §2.13.9: cones "self-intersect at grazing angles"), the
         // surface shadowing and lighting itself: the desk under desk-spot-virtual's lamp lit
         // itself 2–3 % too bright around the sphere.
-        let along = o + d * t;
+        let centre = o + d * t;
         let height = dot(d, n) * t + CONE_START_VOXELS * voxel;
-        let uvw = (along + n * max(1.5 * diameter - height, 0.0) - params.origin.xyz) * extent;
+        let uvw = (centre + n * max(1.5 * diameter - height, 0.0) - params.origin.xyz) * extent;
         let s_rv = textureSampleLevel(volume_rv, volume_sampler, uvw, lod);
         let s_r = textureSampleLevel(volume_r, volume_sampler, uvw, lod);
         out.rv += (1.0 - out.rv.a) * s_rv;
