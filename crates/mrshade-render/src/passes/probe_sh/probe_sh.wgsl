@@ -40,13 +40,29 @@ fn frame_dir(k: u32, d: vec3f) -> vec3f {
     return normalize(transpose(mat3x3f(n[0].xyz, n[1].xyz, n[2].xyz)) * world);
 }
 
+// The sum of `value` over the workgroup's invocations (tree reduction), in invocation 0.
+fn workgroup_sum(t: u32, value: vec3f) -> vec4f {
+    partial[t] = vec4f(value, 0.0);
+    workgroupBarrier();
+    for (var stride = THREADS / 2u; stride > 0u; stride /= 2u) {
+        if (t < stride) {
+            partial[t] += partial[t + stride];
+        }
+        workgroupBarrier();
+    }
+    let sum = partial[0];
+    workgroupBarrier();
+    return sum;
+}
+
 @compute @workgroup_size(256)
 fn cs_main(@builtin(local_invocation_index) t: u32, @builtin(workgroup_id) group: vec3u) {
     let w = source.y;
     let h = source.z;
 
-    let n = COEFFICIENTS;
-    var c: array<vec3f, 16>;
+    // Bands 0–2 and band 3 apart: nine accumulators, as many registers, when band 3 is off.
+    var c: array<vec3f, 9>;
+    var c3: array<vec3f, 7>;
     for (var i = t; i < w * h; i += THREADS) {
         let x = i % w;
         let y = i / w;
@@ -57,25 +73,22 @@ fn cs_main(@builtin(local_invocation_index) t: u32, @builtin(workgroup_id) group
         for (var k = 0u; k < 9u; k++) {
             c[k] += l * (b[k] * d_omega);
         }
-        if (n == 16u) {
+        if (COEFFICIENTS == 16u) {
             let b16 = sh16(d);
-            for (var k = 9u; k < 16u; k++) {
-                c[k] += l * (b16[k] * d_omega);
+            for (var k = 0u; k < 7u; k++) {
+                c3[k] += l * (b16[9u + k] * d_omega);
             }
         }
     }
-    for (var k = 0u; k < n; k++) {
-        partial[t] = vec4f(c[k], 0.0);
-        workgroupBarrier();
-        for (var stride = THREADS / 2u; stride > 0u; stride /= 2u) {
-            if (t < stride) {
-                partial[t] += partial[t + stride];
-            }
-            workgroupBarrier();
+    let first = group.x * COEFFICIENTS;
+    for (var k = 0u; k < 9u; k++) {
+        let sum = workgroup_sum(t, c[k]);
+        if (t == 0u) { coefficients[first + k] = sum; }
+    }
+    if (COEFFICIENTS == 16u) {
+        for (var k = 0u; k < 7u; k++) {
+            let sum = workgroup_sum(t, c3[k]);
+            if (t == 0u) { coefficients[first + 9u + k] = sum; }
         }
-        if (t == 0u) {
-            coefficients[group.x * n + k] = partial[0];
-        }
-        workgroupBarrier();
     }
 }
