@@ -68,3 +68,39 @@ fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
     // Far outside the volume (a corner of the image, 0.5 m away): identical solutions.
     assert_eq!(r.l_rv(0, 0), r.l_r(0, 0));
 }
+
+#[test]
+fn a_lit_floor_does_not_light_itself() {
+    // In the real-only volume a lit floor is the only surface, and a plane reflects no light
+    // onto itself: the cones of its pixels inside the volume, kept off its voxels
+    // (cones.wgsl), gather nothing (wide cones at coarse levels gathered the floor's own
+    // light before, up to a fifth of its direct light).
+    use mrshade_render::outputs::AovImage;
+    let mut s = Setup::top_down(48);
+    s.plane(2.0, 0.0, 0.8, true).cube([0.0, 0.1, 0.0], 0.1, false);
+    s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
+    dvct(&mut s, 32);
+    let r = s.render();
+    let aovs = r.renderer.read_aovs(&r.ctx).unwrap();
+    let linear = |name: &str| match aovs.iter().find(|a| a.name == name).map(|a| &a.image) {
+        Some(AovImage::Linear(image)) => image.clone(),
+        _ => panic!("no {name} AOV"),
+    };
+    let (indirect_r, indirect_rv) = (linear("indirect_r"), linear("indirect_rv"));
+    // The volume: twice the cube's edge around it (x, z within ±0.2 m), a cell inside it.
+    let mut inside = 0;
+    for y in 0..48 {
+        for x in 0..48 {
+            let p = r.world_on_plane(x, y, 0.0);
+            if p.x.abs().max(p.z.abs()) > 0.18 {
+                continue;
+            }
+            let e = indirect_r.pixels[(y * 48 + x) as usize];
+            assert!(e.iter().all(|&c| c.abs() < 1e-6), "({x}, {y}): the floor lights itself: {e:?}");
+            inside += 1;
+        }
+    }
+    assert!(inside > 100, "{inside} floor pixels in the volume");
+    // The real+virtual solution does get the cube's bounce there.
+    assert!(indirect_rv.pixels.iter().any(|p| p[0] > 1e-4), "no bounce from the cube");
+}

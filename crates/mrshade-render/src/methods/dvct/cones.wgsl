@@ -36,16 +36,25 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
         let diameter = max(voxel, aperture * t);
         let lod = min(log2(diameter / voxel), max_lod);
         // A sample as wide as the cone, lifted off the plane of the surface it starts from
-        // (normal `n`) until its trilinear footprint (a voxel of the sample's level, the
-        // cone's diameter D, either side of it) no longer reaches that plane's voxels
-        // (within D/2 of the plane): its centre at least 1.5·D above the plane. A wide cone
-        // leaving at 55° from the normal otherwise filters its own surface's voxels in at
-        // coarse levels (spec §2.13.9: cones "self-intersect at grazing angles"), the
-        // surface shadowing and lighting itself: the desk under desk-spot-virtual's lamp lit
-        // itself 2–3 % too bright around the sphere.
+        // (normal `n`) until its trilinear footprint no longer reaches that plane's voxels:
+        // the coarser of the two levels it blends has voxels of side D ≥ the cone's
+        // diameter, its filter reaches one D either side of the sample, and the voxel that
+        // holds the plane has its centre within D/2 of it, so the sample's centre goes at
+        // least 1.5·D above the plane. A wide cone leaving at 55° from the normal otherwise
+        // filters its own surface's voxels in at coarse levels (spec §2.13.9: cones
+        // "self-intersect at grazing angles"), the surface shadowing and lighting itself: the
+        // desk under desk-spot-virtual's lamp lit itself 2–3 % too bright around the sphere.
         let centre = o + d * t;
         let height = dot(d, n) * t + CONE_START_VOXELS * voxel;
-        let uvw = (centre + n * max(1.5 * diameter - height, 0.0) - params.origin.xyz) * extent;
+        let coarser = voxel * exp2(ceil(lod));
+        let uvw = (centre + n * max(1.5 * coarser - height, 0.0) - params.origin.xyz) * extent;
+        // Lifted out of the volume: nothing there (the sampler's clamp would repeat the
+        // border's voxels, at the coarsest level the whole volume's mean: the floor lit
+        // itself through it).
+        if (any(uvw < vec3f(0.0)) || any(uvw > vec3f(1.0))) {
+            t += diameter;
+            continue;
+        }
         let s_rv = textureSampleLevel(volume_rv, volume_sampler, uvw, lod);
         let s_r = textureSampleLevel(volume_r, volume_sampler, uvw, lod);
         out.rv += (1.0 - out.rv.a) * s_rv;
