@@ -45,18 +45,8 @@ pub const Y32: f32 = 1.445_305_7;
 /// `i = l(l+1) + m` (the first nine are [`basis9`]'s).
 pub fn basis16(d: Vec3) -> [f32; 16] {
     let (x, y, z) = (d.x, d.y, d.z);
-    let b = basis9(d);
     let z2 = z * z;
-    [
-        b[0],
-        b[1],
-        b[2],
-        b[3],
-        b[4],
-        b[5],
-        b[6],
-        b[7],
-        b[8],
+    let band3 = [
         Y3[0] * y * (3.0 * x * x - y * y),
         Y3[1] * x * y * z,
         Y3[2] * y * (5.0 * z2 - 1.0),
@@ -64,7 +54,9 @@ pub fn basis16(d: Vec3) -> [f32; 16] {
         Y3[2] * x * (5.0 * z2 - 1.0),
         Y32 * z * (x * x - y * y),
         Y3[0] * x * (x * x - 3.0 * y * y),
-    ]
+    ];
+    let b = basis9(d);
+    std::array::from_fn(|i| if i < 9 { b[i] } else { band3[i - 9] })
 }
 
 /// `c_i = Σ L(t) y_i(ω_t) dω_t` of the equirectangular radiance `image` over every texel, for

@@ -26,12 +26,12 @@ fn hash_u32(x: u32) -> u32 {
     return (h >> 22u) ^ h;
 }
 
-// An orthonormal frame (t, b) around unit `n` (Duff et al. 2017).
 // Two uniform numbers in [0, 1) from the hashes of `seed` and `seed + 1`.
 fn hash_uniform2(seed: u32) -> vec2f {
     return vec2f(f32(hash_u32(seed)), f32(hash_u32(seed + 1u))) * 2.3283064365386963e-10;
 }
 
+// An orthonormal frame (t, b) around unit `n` (Duff et al. 2017).
 fn tangent_frame(n: vec3f) -> mat2x3f {
     let s = select(-1.0, 1.0, n.z >= 0.0);
     let a = -1.0 / (s + n.z);

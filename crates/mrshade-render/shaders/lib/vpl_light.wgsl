@@ -32,9 +32,9 @@ const MIRRORED_SURROUNDINGS: f32 = 0.5;
 // How the VPLs light one receiver: their lower bound of the VPL–receiver distance (m), for
 // once-reflected light and for the multiple-bounce VPLs' (VPL_BOUNCED) that lie on a surface
 // the camera sees within `screen_radius` pixels of `pixel` (where the screen gathers what
-// this wider clamp leaves out; `screen_covers`); whether the probe's light through transmissive casters is carried by photons (the
-// specular stage's caustics) rather than let through by the shadow; whether the directional
-// VPLs' visibility sums are wanted.
+// this wider clamp leaves out; `screen_covers`); whether the probe's light through
+// transmissive casters is carried by photons (the specular stage's caustics) rather than let
+// through by the shadow; whether the directional VPLs' visibility sums are wanted.
 struct VplShading {
     d_min: f32,
     d_bounce: f32,
@@ -121,14 +121,15 @@ fn ism_visibility(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool, photons: b
     );
 }
 
-// The VPLs `first`, `first + step`, … below `count` at surface `s` (r(p) = `r_p`; `traced`:
-// the specular stage reflects its specular lobe), unscaled.
 // The squared clamp distance of VPL `v` at squared distance `d2`: the multiple-bounce VPLs
 // that the screen-space near field covers stand for the light beyond its reach only.
 fn vpl_clamp2(v: Vpl, d2: f32, d_min2: f32, d_bounce2: f32, how: VplShading) -> f32 {
     if ((v.info.x & VPL_BOUNCED) == 0u || d2 >= d_bounce2 || d_bounce2 <= d_min2) { return d_min2; }
     return select(d_min2, d_bounce2, screen_covers(v.position.xyz, how));
 }
+
+// The VPLs `first`, `first + step`, … below `count` at surface `s` (r(p) = `r_p`; `traced`:
+// the specular stage reflects its specular lobe), unscaled.
 
 fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u32, how: VplShading) -> VplLight {
     var out = VplLight(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));

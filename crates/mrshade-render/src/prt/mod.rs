@@ -102,11 +102,6 @@ impl PrtPass {
         let mut per_vertex = transfer.per_vertex.clone();
         per_vertex.resize(per_vertex.len().max(16), 0.0);
         let transfer_buffer = storage("prt/transfer", bytemuck::cast_slice(&per_vertex));
-        let coefficients = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("prt/coefficients"),
-            contents: bytemuck::bytes_of(&glam::UVec4::new(transfer.coefficients as u32, 0, 0, 0)),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
         let mut frames = vec![0u32; geometry.instance_count().max(1)];
         for (k, &i) in transfer.instances.iter().enumerate() {
             frames[i as usize] = k as u32 + 1;
@@ -122,7 +117,6 @@ impl PrtPass {
         let mut entries = vec![bind::uniform(0, cs)];
         entries.extend((1..9).map(|b| bind::storage(b, cs)));
         entries.push(bind::storage_texture(9, wgpu::TextureFormat::Rgba16Float));
-        entries.push(bind::uniform(10, cs));
         let layout = bind::layout(device, "prt/layout", &entries);
         let group = bind::group(
             device,
@@ -139,10 +133,11 @@ impl PrtPass {
                 frames.as_entire_binding(),
                 probe_sh.coefficients.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&irradiance.view),
-                coefficients.as_entire_binding(),
             ],
         );
-        let pipeline = mrshade_gpu::shader::compute_pipeline(device, "prt", SHADER, &[&layout]);
+        let constants = [("COEFFICIENTS", transfer.coefficients as f64)];
+        let pipeline =
+            mrshade_gpu::shader::compute_pipeline_with(device, "prt", SHADER, "cs_main", &[&layout], &constants);
         let workgroups = [size.0.div_ceil(8), size.1.div_ceil(8), 1];
         Self { dispatch: Dispatch { pipeline, groups: vec![group], workgroups }, irradiance }
     }

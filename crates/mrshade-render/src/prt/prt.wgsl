@@ -10,14 +10,16 @@
 @group(0) @binding(3) var<storage, read> vertices: array<f32>;
 @group(0) @binding(4) var<storage, read> indices: array<u32>;
 @group(0) @binding(5) var<storage, read> triangles: array<vec4u>;
-// `sh.x` (9 or 16) per vertex of the scene's vertex buffer (zero where nothing was baked).
+// COEFFICIENTS per vertex of the scene's vertex buffer (zero where nothing was baked).
 @group(0) @binding(6) var<storage, read> transfer: array<f32>;
 // Per instance: its frame in `coefficients` (1, 2, …) or 0 without PRT.
 @group(0) @binding(7) var<storage, read> instance_frame: array<u32>;
 @group(0) @binding(8) var<storage, read> coefficients: array<vec4f>;
 @group(0) @binding(9) var out_irradiance: texture_storage_2d<rgba16float, write>;
-// x: SH coefficients per vertex and per frame of `coefficients`.
-@group(0) @binding(10) var<uniform> sh: vec4u;
+
+// SH coefficients per vertex and per frame of `coefficients`, 9 or 16, set when the pipeline
+// is made (as probe_sh.wgsl's).
+override COEFFICIENTS: u32 = 9u;
 
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
@@ -39,7 +41,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let tri = triangles[triangle - 1u];
     let w = vec3f(1.0 - h.bary.x - h.bary.y, h.bary.x, h.bary.y);
     var e = vec3f(0.0);
-    let n = sh.x;
+    let n = COEFFICIENTS;
     for (var corner = 0u; corner < 3u; corner++) {
         let v = (indices[tri.y + corner] + tri.z) * n;
         for (var i = 0u; i < n; i++) {

@@ -82,8 +82,8 @@ fn diffuse_cone(n: vec3f, k: u32) -> vec4f {
     return vec4f(d, PI * dot(d, n) / cos_sum);
 }
 
-// Where the cones of a surface at `p` with normal `n` start: one voxel off the surface, so
-// that it does not see its own voxels.
+// Where the cones of a surface at `p` with normal `n` start: CONE_START_VOXELS voxels off the
+// surface, so that it does not see its own voxels.
 fn cone_origin(p: vec3f, n: vec3f) -> vec3f { return p + n * (CONE_START_VOXELS * voxel_side()); }
 const CONE_START_VOXELS: f32 = 2.0;
 

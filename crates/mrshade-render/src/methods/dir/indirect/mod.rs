@@ -36,8 +36,9 @@ impl IndirectPass {
 
     /// Binds the G-buffer, VPLs and ISMs (VPLs lit closer than `d_min` metres light as if
     /// from `d_min`; multiple-bounce VPLs from `near_radius`, within which the previous
-    /// frame's `previous_indirect` light is gathered from the screen); writes `out`. With `probe_caustics` the probe's
-    /// light through transmissive casters is the specular stage's (photons), not the shadow's.
+    /// frame's `previous_indirect` light is gathered from the screen); writes `out`. With
+    /// `probe_caustics` the probe's light through transmissive casters is the specular
+    /// stage's (photons), not the shadow's.
     #[allow(clippy::too_many_arguments, reason = "shading reads all of these")]
     pub fn new(
         ctx: &GpuContext,
