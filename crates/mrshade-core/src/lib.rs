@@ -15,6 +15,7 @@ pub mod math;
 pub mod region;
 pub mod settings;
 pub mod sh;
+pub mod sog;
 pub mod text;
 
 pub use differential::Differential;

@@ -169,6 +169,9 @@ fn set_overrides_are_as_strict_as_the_file() {
     assert!(error(&path, &set(&["ibl.samples=0"])).contains("`ibl.samples` must be between 1 and 256"));
     assert!(error(&path, &set(&["ibl.prt_samples=8"])).contains("`ibl.prt_samples`"));
     assert!(error(&path, &set(&["ibl.prt_coefficients=25"])).contains("`ibl.prt_coefficients` must be 9 or 16"));
+    assert!(error(&path, &set(&["ibl.prt_specular=\"gauss\""])).contains("gauss"));
+    let fis = Session::load(&path, &set(&["ibl.prt_specular=\"fis\""])).unwrap();
+    assert_eq!(fis.settings.ibl.prt_specular, mrshade_core::settings::PrtSpecular::Fis);
     assert_eq!(Session::load(&path, &set(&["dlpv.resolution=64"])).unwrap().settings.dlpv.resolution, 64);
     // A still's frame count (default 256 for dir) is bounded like the file's.
     assert!(error(&path, &set(&["output.frames=0"])).contains("frames must be between 1 and 10000, got 0"));

@@ -22,7 +22,8 @@ pub enum VirtualShading {
     Fis,
     /// Precomputed radiance transfer (spec §2.4): rigid virtual objects take diffuse light
     /// with self-shadowing from transfer vectors baked per vertex on first use (cached next
-    /// to the session as prt_cache.bin), deforming ones SH irradiance; specular as `fis`.
+    /// to the session as prt_cache.bin), deforming ones SH irradiance; specular by
+    /// `ibl.prt_specular`.
     #[serde(rename = "prt")]
     Prt,
 }
@@ -37,6 +38,20 @@ impl VirtualShading {
             VirtualShading::Prt => "prt",
         }
     }
+}
+
+/// The glossy part of `prt` shading.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum PrtSpecular {
+    /// Sum of Gaussians (spec §2.5, [GKD07a]): three lookups into the probe's pyramid per
+    /// pixel, at the directions and widths of the GGX lobe's fit, shadowed by the PRT
+    /// visibility; the default, as in the thesis.
+    #[default]
+    #[serde(rename = "sog")]
+    Sog,
+    /// Filtered importance sampling with `ibl.samples` samples, unshadowed (as `fis`).
+    #[serde(rename = "fis")]
+    Fis,
 }
 
 /// Settings of image-based light on virtual objects.
@@ -55,11 +70,19 @@ pub struct IblSettings {
     /// (bands 0–3: sharper self-shadowing from a dominant light, spec §2.4, Franke Fig.
     /// 4.11). Default 9.
     pub prt_coefficients: u32,
+    /// The glossy part of `prt` shading: `sog` (default) or `fis`.
+    pub prt_specular: PrtSpecular,
 }
 
 impl Default for IblSettings {
     fn default() -> Self {
-        Self { virtual_shading: VirtualShading::Prefiltered, samples: 32, prt_samples: 256, prt_coefficients: 9 }
+        Self {
+            virtual_shading: VirtualShading::Prefiltered,
+            samples: 32,
+            prt_samples: 256,
+            prt_coefficients: 9,
+            prt_specular: PrtSpecular::Sog,
+        }
     }
 }
 

@@ -20,7 +20,7 @@ pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
 pub use dlpv::DlpvSettings;
 pub use dvct::DvctSettings;
-pub use ibl::{IblSettings, VirtualShading};
+pub use ibl::{IblSettings, PrtSpecular, VirtualShading};
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};
 pub use reference::{MAX_REFERENCE_SPP, ReferenceSettings};
 pub use shadows::ShadowSettings;

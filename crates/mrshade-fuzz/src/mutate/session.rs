@@ -48,6 +48,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),
     ("ibl.prt_coefficients", Kind::Number),
+    ("ibl.prt_specular", Kind::Choice(&["sog", "fis", "gauss"])),
     ("dir.vpl_count", Kind::Number),
     ("dir.points_per_vpl", Kind::Number),
     ("dir.ism_resolution", Kind::Number),

@@ -11,7 +11,8 @@ use crate::scene_gpu::{GpuProbe, GpuScene};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
 use mrshade_core::Differential;
-use mrshade_core::settings::{IblSettings, ShadowSettings, VirtualShading};
+use mrshade_core::settings::{IblSettings, PrtSpecular, ShadowSettings, VirtualShading};
+use mrshade_core::sog::SogTable;
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
@@ -38,6 +39,11 @@ impl ShadowParams {
 
 /// Format of the radiance buffers `L_rv`, `L_r` (linear HDR).
 pub const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The Sum-of-Gaussians table's cells per axis (`n·v` × roughness), and the GGX samples that
+/// fit each (spec §2.5 leaves both open; 16² cells interpolated bilinearly, as the DFG table).
+const SOG_SIZE: u32 = 16;
+const SOG_SAMPLES: u32 = 1024;
 
 /// Allocates the pair of radiance buffers at `size`.
 pub fn radiance_targets(device: &wgpu::Device, size: (u32, u32)) -> Differential<Target> {
@@ -123,6 +129,7 @@ impl DirectPass {
             bind::texture(5, cs, wgpu::TextureSampleType::Float { filterable: true }, d2),
             bind::uniform(6, cs),
             bind::texture(7, cs, unfilterable, d2),
+            bind::storage(8, cs),
         ]);
         let probe_layout = bind::layout(device, "direct/probe_layout", &entries);
         let (ibl_settings, probe_sh, prt) = ibl;
@@ -142,9 +149,17 @@ impl DirectPass {
                 &no_prt
             }
         };
+        // The GGX lobe's Sum-of-Gaussians fit for `prt` (spec §2.5); one dummy entry otherwise.
+        let sog = shading == 3 && ibl_settings.prt_specular == PrtSpecular::Sog;
+        let sog_table = if sog { SogTable::fit(SOG_SIZE, SOG_SAMPLES).to_vec4() } else { vec![[0.0; 4]] };
+        let sog_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("direct/sog_table"),
+            contents: bytemuck::cast_slice(&sog_table),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
         let ibl_uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("direct/ibl"),
-            contents: bytemuck::bytes_of(&UVec4::new(shading, ibl_settings.samples, 0, 0)),
+            contents: bytemuck::bytes_of(&UVec4::new(shading, ibl_settings.samples, sog as u32, SOG_SIZE)),
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let output_layout = bind::layout(
@@ -193,6 +208,7 @@ impl DirectPass {
                     TextureView(&probe.pyramid.view),
                     ibl_uniform.as_entire_binding(),
                     TextureView(&prt.view),
+                    sog_buffer.as_entire_binding(),
                 ]);
                 r
             }),
