@@ -150,7 +150,7 @@ impl DirectPass {
             }
         };
         // The GGX lobe's Sum-of-Gaussians fit for `prt` (spec §2.5); one dummy entry otherwise.
-        let sog = shading == 3 && ibl_settings.prt_specular == PrtSpecular::Sog;
+        let sog = ibl_settings.virtual_shading == VirtualShading::Prt && ibl_settings.prt_specular == PrtSpecular::Sog;
         let sog_table = if sog { SogTable::fit(SOG_SIZE, SOG_SAMPLES).to_vec4() } else { vec![[0.0; 4]] };
         let sog_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("direct/sog_table"),
