@@ -19,6 +19,13 @@ fn volume_span(o: vec3f, d: vec3f) -> vec2f {
     return vec2f(max(max(near.x, near.y), near.z), min(min(far.x, far.y), far.z));
 }
 
+// Side of the voxels a cone's samples read, per cone diameter. A sample blurs its level's
+// voxels (a box of side V) by the trilinear tent (±V): σ ≈ V/2, where the cone's own disc of
+// diameter D has σ ≈ D/4. Reading voxels of half the diameter, a sample every half diameter,
+// matches the two; voxels as wide as the cone made every cone act twice as wide, an object
+// beside a surface shadowing it far beyond its silhouette.
+const SAMPLE_PER_DIAMETER: f32 = 0.5;
+
 // Marches from `o` along unit `d` with steps as long as the cone is wide (`aperture`: its
 // diameter per unit length), sampling the mip level whose voxels match that width, from `start`
 // until both solutions are opaque or the cone leaves the volume, its samples kept clear of the
@@ -34,13 +41,14 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
     for (var i = 0u; i < 256u; i++) {
         if (t >= span.y || (out.rv.a >= 0.99 && out.r.a >= 0.99)) { break; }
         let diameter = max(voxel, aperture * t);
-        let lod = min(log2(diameter / voxel), max_lod);
-        // A sample as wide as the cone, lifted off the plane of the surface it starts from
-        // (normal `n`) until its trilinear footprint no longer reaches that plane's voxels:
-        // the coarser of the two levels it blends has voxels of side D ≥ the cone's
-        // diameter, its filter reaches one D either side of the sample, and the voxel that
-        // holds the plane has its centre within D/2 of it, so the sample's centre goes at
-        // least 1.5·D above the plane. A wide cone leaving at 55° from the normal otherwise
+        let side = max(voxel, SAMPLE_PER_DIAMETER * diameter);
+        let lod = min(log2(side / voxel), max_lod);
+        // A sample of the cone, lifted off the plane of the surface it starts from (normal
+        // `n`) until its trilinear footprint no longer reaches that plane's voxels: the
+        // coarser of the two levels it blends has voxels of side D ≥ the sample's side, its
+        // filter reaches one D either side of the sample, and the voxel that holds the plane
+        // has its centre within D/2 of it, so the sample's centre goes at least 1.5·D above
+        // the plane. A wide cone leaving at 55° from the normal otherwise
         // filters its own surface's voxels in at coarse levels (spec §2.13.9: cones
         // "self-intersect at grazing angles"), the surface shadowing and lighting itself: the
         // desk under desk-spot-virtual's lamp lit itself 2–3 % too bright around the sphere.
@@ -52,14 +60,14 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
         // border's voxels, at the coarsest level the whole volume's mean: the floor lit
         // itself through it).
         if (any(uvw < vec3f(0.0)) || any(uvw > vec3f(1.0))) {
-            t += diameter;
+            t += side;
             continue;
         }
         let s_rv = textureSampleLevel(volume_rv, volume_sampler, uvw, lod);
         let s_r = textureSampleLevel(volume_r, volume_sampler, uvw, lod);
         out.rv += (1.0 - out.rv.a) * s_rv;
         out.r += (1.0 - out.r.a) * s_r;
-        t += diameter;
+        t += side;
     }
     return out;
 }
