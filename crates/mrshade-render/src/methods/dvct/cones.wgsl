@@ -26,8 +26,9 @@ fn volume_span(o: vec3f, d: vec3f) -> vec2f {
 // beside a surface shadowing it far beyond its silhouette.
 const SAMPLE_PER_DIAMETER: f32 = 0.5;
 
-// Marches from `o` along unit `d` with steps as long as the cone is wide (`aperture`: its
-// diameter per unit length), sampling the mip level whose voxels match that width, from `start`
+// Marches from `o` along unit `d` with steps of SAMPLE_PER_DIAMETER × the cone's width
+// (`aperture`: its diameter per unit length), sampling the mip level whose voxels are that
+// step's side, from `start`
 // until both solutions are opaque or the cone leaves the volume, its samples kept clear of the
 // plane of normal `n` through the surface it leaves. Outside the volume there is nothing:
 // what a cone does not hit there is the probe's (its opacity says how much).
