@@ -5,13 +5,23 @@ use anyhow::{Context, Result};
 
 /// Reads mip 0, layer 0 of `texture` into tightly packed rows.
 pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>> {
-    let (width, height) = (texture.width(), texture.height());
+    read_level(ctx, texture, 0, 1)
+}
+
+/// Reads mip `level` of the 3D `texture`, every slice, into tightly packed rows (slice-major).
+pub fn read_volume_level(ctx: &GpuContext, texture: &wgpu::Texture, level: u32) -> Result<Vec<u8>> {
+    read_level(ctx, texture, level, (texture.depth_or_array_layers() >> level).max(1))
+}
+
+/// Reads `depth` slices (or layers) of mip `level` of `texture`.
+fn read_level(ctx: &GpuContext, texture: &wgpu::Texture, level: u32, depth: u32) -> Result<Vec<u8>> {
+    let (width, height) = ((texture.width() >> level).max(1), (texture.height() >> level).max(1));
     let texel = texture.format().block_copy_size(None).context("format cannot be copied")?;
     let row = width * texel;
     let padded_row = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback/staging"),
-        size: (padded_row * height) as u64,
+        size: (padded_row * height * depth) as u64,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
@@ -19,7 +29,7 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
             texture,
-            mip_level: 0,
+            mip_level: level,
             origin: wgpu::Origin3d::ZERO,
             aspect: wgpu::TextureAspect::All,
         },
@@ -31,12 +41,12 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
                 rows_per_image: Some(height),
             },
         },
-        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        wgpu::Extent3d { width, height, depth_or_array_layers: depth },
     );
     ctx.queue.submit([encoder.finish()]);
     map_read(ctx, &buffer, |mapped| {
-        let mut out = Vec::with_capacity((row * height) as usize);
-        for y in 0..height {
+        let mut out = Vec::with_capacity((row * height * depth) as usize);
+        for y in 0..height * depth {
             let start = (y * padded_row) as usize;
             out.extend_from_slice(&mapped[start..start + row as usize]);
         }

@@ -104,3 +104,39 @@ fn a_lit_floor_does_not_light_itself() {
     // The real+virtual solution does get the cube's bounce there.
     assert!(indirect_rv.pixels.iter().any(|p| p[0] > 1e-4), "no bounce from the cube");
 }
+
+#[test]
+fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
+    // A real floor, one voxel thick in the volume: the chain seen along its normal (y) keeps
+    // it opaque at every level, the chains seen edge-on (x, z) thin it by half a level (one
+    // mean of the three made it half as opaque per level: wide cones saw the probe through
+    // the cornell walls).
+    let mut s = Setup::top_down(16);
+    s.plane(2.0, 0.0, 0.8, true).cube([0.0, 0.1, 0.0], 0.1, false);
+    dvct(&mut s, 32);
+    let r = s.render();
+    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+    let res = method.params().info.x;
+    for level in 1..mrshade_render::methods::dvct::levels(res) {
+        let side = res >> level;
+        // Per axis chain, the most opaque cell of the column through the volume's centre.
+        let max_alpha: Vec<f32> = method
+            .volumes
+            .r
+            .axes
+            .iter()
+            .map(|axis| {
+                let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, axis, level - 1).unwrap();
+                let texels: &[[half::f16; 4]] = bytemuck::cast_slice(&bytes);
+                let centre = side / 2;
+                (0..side)
+                    .map(|y| texels[((centre * side + y) * side + centre) as usize][3].to_f32())
+                    .fold(0.0, f32::max)
+            })
+            .collect();
+        assert!(max_alpha[1] > 0.99, "level {level}: the floor seen along y has opacity {}", max_alpha[1]);
+        for a in [0, 2] {
+            assert!(max_alpha[a] < 0.6, "level {level}: the floor seen edge-on has opacity {}", max_alpha[a]);
+        }
+    }
+}

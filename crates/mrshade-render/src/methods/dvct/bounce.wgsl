@@ -12,9 +12,7 @@
 @group(0) @binding(5) var<storage, read> materials: array<Material>;
 @group(0) @binding(6) var<storage, read> voxels: array<u32>;
 
-@group(1) @binding(0) var volume_rv: texture_3d<f32>;
-@group(1) @binding(1) var volume_r: texture_3d<f32>;
-@group(1) @binding(2) var volume_sampler: sampler;
+// Group 1: the volumes (cones.wgsl).
 
 @group(2) @binding(0) var env_radiance: texture_2d<f32>;
 @group(2) @binding(1) var env_irradiance: texture_2d<f32>;

@@ -1,7 +1,17 @@
 // Cone tracing through the prefiltered volumes (Franke §2.13.2 step 4, Eq. 5.18–5.19 in the
 // premultiplied front-to-back form of [Code]): both solutions along the same cone, the same
 // samples, `rv` through the real+virtual volume and `r` through the real-only one.
-// Bindings are declared by the including pass: params, volume_rv, volume_r, volume_sampler.
+// The including pass declares `params`; group 1 is the volumes (VolumePair::sampled).
+
+@group(1) @binding(0) var volume_rv: texture_3d<f32>;
+@group(1) @binding(1) var volume_r: texture_3d<f32>;
+@group(1) @binding(2) var volume_sampler: sampler;
+@group(1) @binding(3) var volume_rv_x: texture_3d<f32>;
+@group(1) @binding(4) var volume_rv_y: texture_3d<f32>;
+@group(1) @binding(5) var volume_rv_z: texture_3d<f32>;
+@group(1) @binding(6) var volume_r_x: texture_3d<f32>;
+@group(1) @binding(7) var volume_r_y: texture_3d<f32>;
+@group(1) @binding(8) var volume_r_z: texture_3d<f32>;
 
 struct Cone {
     // Premultiplied radiance seen along the cone, and its opacity, of each solution.
@@ -17,6 +27,46 @@ fn volume_span(o: vec3f, d: vec3f) -> vec2f {
     let near = min(lo, hi);
     let far = max(lo, hi);
     return vec2f(max(max(near.x, near.y), near.z), min(min(far.x, far.y), far.z));
+}
+
+// A sample of one solution at level `lod` seen along unit `d`: the voxels themselves at level
+// 0, above it the axis chains (mips.wgsl) with weights w = |d| / Σ|d|, an axis whose weight is
+// negligible not read. Opacity is the product of the axes' transmittances raised to their
+// weights, 1 − Π (1 − α_a)^w_a: a wall that the cone crosses obliquely (opaque along its
+// normal, thin edge-on) stops it, where a weighted mean of the opacities let half the probe
+// through it at 45°; a blob equally opaque along all axes keeps its opacity. Radiance is the
+// weighted mean colour at that opacity (premultiplied).
+fn sample_volume(
+    base: texture_3d<f32>,
+    x: texture_3d<f32>,
+    y: texture_3d<f32>,
+    z: texture_3d<f32>,
+    uvw: vec3f,
+    lod: f32,
+    d: vec3f,
+) -> vec4f {
+    if (lod <= 0.0) { return textureSampleLevel(base, volume_sampler, uvw, 0.0); }
+    let w = abs(d) / (abs(d.x) + abs(d.y) + abs(d.z));
+    let level = max(lod - 1.0, 0.0);
+    var colour = vec3f(0.0);
+    var opacity = 0.0;
+    var log_transmit = 0.0;
+    for (var a = 0u; a < 3u; a++) {
+        if (w[a] < 0.03) { continue; }
+        var s: vec4f;
+        switch a {
+            case 0u: { s = textureSampleLevel(x, volume_sampler, uvw, level); }
+            case 1u: { s = textureSampleLevel(y, volume_sampler, uvw, level); }
+            default: { s = textureSampleLevel(z, volume_sampler, uvw, level); }
+        }
+        colour += w[a] * s.rgb;
+        opacity += w[a] * s.a;
+        log_transmit += w[a] * log2(max(1.0 - s.a, 1e-6));
+    }
+    let alpha = 1.0 - exp2(log_transmit);
+    let coarse = vec4f(select(vec3f(0.0), colour / opacity * alpha, opacity > 1e-6), alpha);
+    if (lod >= 1.0) { return coarse; }
+    return mix(textureSampleLevel(base, volume_sampler, uvw, 0.0), coarse, lod);
 }
 
 // Side of the voxels a cone's samples read, per cone diameter. A sample blurs its level's
@@ -64,8 +114,8 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
             t += side;
             continue;
         }
-        let s_rv = textureSampleLevel(volume_rv, volume_sampler, uvw, lod);
-        let s_r = textureSampleLevel(volume_r, volume_sampler, uvw, lod);
+        let s_rv = sample_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
+        let s_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
         out.rv += (1.0 - out.rv.a) * s_rv;
         out.r += (1.0 - out.r.a) * s_r;
         t += side;

@@ -17,9 +17,7 @@
 @group(0) @binding(6) var gbuffer_flags: texture_2d<u32>;
 @group(0) @binding(7) var<storage, read> materials: array<Material>;
 
-@group(1) @binding(0) var volume_rv: texture_3d<f32>;
-@group(1) @binding(1) var volume_r: texture_3d<f32>;
-@group(1) @binding(2) var volume_sampler: sampler;
+// Group 1: the volumes (cones.wgsl).
 
 // Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 

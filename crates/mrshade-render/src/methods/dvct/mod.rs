@@ -161,7 +161,7 @@ impl DvctMethod {
         let storage_3d = |i| bind::storage_texture_of(i, volume::FORMAT, wgpu::TextureViewDimension::D3);
         let out_layout = bind::layout(device, "dvct/out_layout", &[storage_3d(0), storage_3d(1)]);
         let out_group = |pair: &VolumePair, label: &str| {
-            let [rv, r] = pair.level(0);
+            let ([rv, ..], [r, ..]) = (pair.rv.level(0), pair.r.level(0));
             use wgpu::BindingResource::TextureView;
             bind::group(device, label, &out_layout, &[TextureView(&rv), TextureView(&r)])
         };
@@ -235,22 +235,16 @@ impl DvctMethod {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let volume_layout = bind::layout(
-            device,
-            "dvct/volume_layout",
-            &[
-                bind::texture(0, cs, filterable, wgpu::TextureViewDimension::D3),
-                bind::texture(1, cs, filterable, wgpu::TextureViewDimension::D3),
-                bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering),
-            ],
-        );
+        // cones.wgsl's group 1: the bases, the sampler, the axis chains (VolumePair::sampled).
+        let volume_3d = |i| bind::texture(i, cs, filterable, wgpu::TextureViewDimension::D3);
+        let mut entries = vec![volume_3d(0), volume_3d(1), bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering)];
+        entries.extend((3..9).map(volume_3d));
+        let volume_layout = bind::layout(device, "dvct/volume_layout", &entries);
         let volume_group = |pair: &VolumePair, label: &str| {
-            bind::group(
-                device,
-                label,
-                &volume_layout,
-                &[TextureView(&pair.sampled[0]), TextureView(&pair.sampled[1]), Sampler(&sampler)],
-            )
+            let [rv, r, axes @ ..] = &pair.sampled;
+            let mut resources = vec![TextureView(rv), TextureView(r), Sampler(&sampler)];
+            resources.extend(axes.iter().map(TextureView));
+            bind::group(device, label, &volume_layout, &resources)
         };
 
         // Second bounce.
@@ -281,42 +275,28 @@ impl DvctMethod {
             (None, None)
         };
 
-        // Mipmaps.
+        // Mipmaps: the three axis chains of one solution per dispatch.
+        let finer = |i| {
+            let unfiltered = wgpu::TextureSampleType::Float { filterable: false };
+            bind::texture(i, cs, unfiltered, wgpu::TextureViewDimension::D3)
+        };
         let mips_layout = bind::layout(
             device,
             "dvct/mips_layout",
-            &[
-                bind::texture(
-                    0,
-                    cs,
-                    wgpu::TextureSampleType::Float { filterable: false },
-                    wgpu::TextureViewDimension::D3,
-                ),
-                bind::texture(
-                    1,
-                    cs,
-                    wgpu::TextureSampleType::Float { filterable: false },
-                    wgpu::TextureViewDimension::D3,
-                ),
-                storage_3d(2),
-                storage_3d(3),
-            ],
+            &[finer(0), finer(1), finer(2), storage_3d(3), storage_3d(4), storage_3d(5)],
         );
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
         let chain = |pair: &VolumePair| {
-            (1..levels(res))
-                .map(|level| {
-                    let [finer_rv, finer_r] = pair.level(level - 1);
-                    let [rv, r] = pair.level(level);
-                    let group = bind::group(
-                        device,
-                        "dvct/mips_group",
-                        &mips_layout,
-                        &[TextureView(&finer_rv), TextureView(&finer_r), TextureView(&rv), TextureView(&r)],
-                    );
-                    (group, res >> level)
-                })
-                .collect::<Vec<_>>()
+            let mut groups = Vec::new();
+            for level in 1..levels(res) {
+                for volume in [&pair.rv, &pair.r] {
+                    let finer = volume.level(level - 1);
+                    let out = volume.level(level);
+                    let resources: Vec<_> = finer.iter().chain(&out).map(TextureView).collect();
+                    groups.push((bind::group(device, "dvct/mips_group", &mips_layout, &resources), res >> level));
+                }
+            }
+            groups
         };
         let mut mip_groups = vec![chain(&first)];
         if let Some(second) = &volumes {

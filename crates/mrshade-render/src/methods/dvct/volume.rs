@@ -24,54 +24,90 @@ pub fn levels(resolution: u32) -> u32 {
     resolution.max(1).ilog2() + 1
 }
 
+/// One solution's volume: the voxels themselves and, from the second level on, one prefiltered
+/// chain per axis, each seen along its axis (anisotropic voxels, [CNS+11] §4: a wall one voxel
+/// thick stays opaque to a cone that crosses it at every level, where one mean over the three
+/// axes lets a wide cone see the probe through it).
+pub struct Volume {
+    /// `resolution`³, one level.
+    pub base: wgpu::Texture,
+    /// x, y, z: `(resolution/2)`³ with `levels(resolution) − 1` levels.
+    pub axes: [wgpu::Texture; 3],
+}
+
+impl Volume {
+    fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
+        let texture = |name: String, side: u32, levels: u32| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&name),
+                size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: side },
+                mip_level_count: levels,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D3,
+                format: FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let chain = levels(resolution).saturating_sub(1).max(1);
+        let axis = |a: &str| texture(format!("{label}/{a}"), (resolution / 2).max(1), chain);
+        Self { base: texture(format!("{label}/base"), resolution, 1), axes: [axis("x"), axis("y"), axis("z")] }
+    }
+
+    /// Views for sampling: the base, then the three axis chains.
+    fn sampled(&self) -> [wgpu::TextureView; 4] {
+        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+        [view(&self.base), view(&self.axes[0]), view(&self.axes[1]), view(&self.axes[2])]
+    }
+
+    /// Level `level` (from 1) of the three axis chains, or the base three times for level 0.
+    pub fn level(&self, level: u32) -> [wgpu::TextureView; 3] {
+        let single = |t: &wgpu::Texture, mip: u32| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("dvct/volume_level"),
+                base_mip_level: mip,
+                mip_level_count: Some(1),
+                ..Default::default()
+            })
+        };
+        if level == 0 {
+            [0, 1, 2].map(|_| single(&self.base, 0))
+        } else {
+            self.axes.each_ref().map(|t| single(t, level - 1))
+        }
+    }
+}
+
 /// A pair of prefiltered volumes, one per solution (`rv`: real and virtual surfaces; `r`:
 /// real ones only).
 pub struct VolumePair {
     /// Real+virtual volume.
-    pub rv: wgpu::Texture,
+    pub rv: Volume,
     /// Real-only volume.
-    pub r: wgpu::Texture,
-    /// Views of every level of each (for sampling): `[rv, r]`.
-    pub sampled: [wgpu::TextureView; 2],
+    pub r: Volume,
+    /// Views for sampling, in the order of cones.wgsl's bindings: the bases of `rv` and `r`,
+    /// then the axis chains of `rv`, then those of `r`.
+    pub sampled: [wgpu::TextureView; 8],
 }
 
 impl VolumePair {
-    /// Two `resolution`³ volumes with their mip chains, labelled `<label>/rv` and `<label>/r`.
+    /// Two `resolution`³ volumes with their chains, labelled `<label>/rv/…` and `<label>/r/…`.
     pub fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
-        let volume = |name: &str| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("{label}/{name}")),
-                size: wgpu::Extent3d { width: resolution, height: resolution, depth_or_array_layers: resolution },
-                mip_level_count: levels(resolution),
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D3,
-                format: FORMAT,
-                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            })
-        };
-        let rv = volume("rv");
-        let r = volume("r");
-        let sampled = [&rv, &r].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        let rv = Volume::new(device, &format!("{label}/rv"), resolution);
+        let r = Volume::new(device, &format!("{label}/r"), resolution);
+        let [rv_base, rv_x, rv_y, rv_z] = rv.sampled();
+        let [r_base, r_x, r_y, r_z] = r.sampled();
+        let sampled = [rv_base, r_base, rv_x, rv_y, rv_z, r_x, r_y, r_z];
         Self { rv, r, sampled }
-    }
-
-    /// Views of level `level` of both volumes, `[rv, r]`.
-    pub fn level(&self, level: u32) -> [wgpu::TextureView; 2] {
-        [&self.rv, &self.r].map(|t| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("dvct/volume_level"),
-                base_mip_level: level,
-                mip_level_count: Some(1),
-                ..Default::default()
-            })
-        })
     }
 
     /// Bytes of both volumes with their chains.
     pub fn bytes(resolution: u32) -> u64 {
         let voxels = (resolution as u64).pow(3);
-        2 * voxels * 8 * 8 / 7
+        // The base, and three chains of an eighth of it each, 8/7 with their levels.
+        2 * (voxels * 8 + 3 * voxels * 8 * 8 / 7 / 8)
     }
 }
 
