@@ -17,6 +17,8 @@ struct Cone {
     // Premultiplied radiance seen along the cone, and its opacity, of each solution.
     rv: vec4f,
     r: vec4f,
+    // The most opaque single sample of each solution (rv, r).
+    peak: vec2f,
 }
 
 // Enter and exit distances of the ray `o + t·d` through the volume (exit < enter: missed).
@@ -83,7 +85,7 @@ const SAMPLE_PER_DIAMETER: f32 = 0.5;
 // plane of normal `n` through the surface it leaves. Outside the volume there is nothing:
 // what a cone does not hit there is the probe's (its opacity says how much).
 fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
-    var out = Cone(vec4f(0.0), vec4f(0.0));
+    var out = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0));
     let span = volume_span(o, d);
     let voxel = voxel_side();
     let max_lod = f32(params.info.y - 1u);
@@ -118,9 +120,23 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
         let s_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
         out.rv += (1.0 - out.rv.a) * s_rv;
         out.r += (1.0 - out.r.a) * s_r;
+        out.peak = max(out.peak, vec2f(s_rv.a, s_r.a));
         t += side;
     }
     return out;
+}
+
+// How much of the probe a cone's solutions hide (rv, r). Front to back, the samples' opacities
+// multiply as if each hid an independent part of the cone; but one solid object beside the
+// surface fills the same part of the cone sample after sample (the cone grows, the object
+// stays), and its opacity compounds: half a cone covered by a block read as 7/8 hidden after
+// three samples, so a virtual object darkened the real floor around it far beyond its
+// silhouette (cornell's floor in front of the tall block kept 35 % of the real-only probe
+// light where cosine-weighted ray casting keeps 68 %). Fully correlated samples hide only the most opaque
+// one's share; the union of the parts the samples hide lies between, and the mean of the two
+// bounds stands for it.
+fn probe_occlusion(hit: Cone) -> vec2f {
+    return min(0.5 * (vec2f(hit.rv.a, hit.r.a) + hit.peak), vec2f(1.0));
 }
 
 // The nine diffuse cones of [CNS+11] (spec §2.13.4): the normal and eight around it at 45°
@@ -170,8 +186,9 @@ fn gather_diffuse(p: vec3f, n: vec3f) -> Gathered {
         out.rv += c.w * hit.rv.rgb;
         out.r += c.w * hit.r.rgb;
         let w = c.w * env_radiance_at(frame, c.xyz, CONE_PROBE_ROUGHNESS);
-        out.env_rv += w * (1.0 - min(hit.rv.a, 1.0));
-        out.env_r += w * (1.0 - min(hit.r.a, 1.0));
+        let hidden = probe_occlusion(hit);
+        out.env_rv += w * (1.0 - hidden.x);
+        out.env_r += w * (1.0 - hidden.y);
         out.env += w;
     }
     return out;
