@@ -121,7 +121,7 @@ fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
         let side = res >> level;
         // Per axis chain, the most opaque cell of the column through the volume's centre.
         let max_alpha: Vec<f32> = method
-            .volumes
+            .volumes()
             .r
             .axes
             .iter()
@@ -191,4 +191,30 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
     assert!(count >= 6, "{count} pixels beside the cube");
     let mean = error / count as f32;
     assert!(mean < 0.06, "the probe visibility is {mean:.3} away from ray casting on average");
+}
+
+#[test]
+fn real_surfaces_beyond_the_volume_hide_the_probe_through_the_outer_volume() {
+    // A real box just outside the volume around a small virtual cube (twice its size), inside
+    // the outer one (four times that): the floor beside the virtual cube loses the sky that the
+    // real box hides, as ray casting says; with the thesis's single volume it lost none.
+    let visibility_beside = |outer_scale: f32| {
+        let mut s = Setup::top_down(48);
+        s.probe = Some([0.8, 0.8, 0.8]);
+        s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.05, 0.0], 0.05, false).cube([0.25, 0.1, 0.0], 0.1, true);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("outer_scale = {outer_scale}\n");
+        let r = s.render();
+        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        // The floor pixel nearest x = 0.08 m on the middle row: inside the inner volume (±0.1 m).
+        let x = (0..48).min_by_key(|&x| ((r.world_on_plane(x, 24, 0.0).x - 0.08).abs() * 1e4) as u32).unwrap();
+        let p = r.world_on_plane(x, 24, 0.0);
+        (visibility.r[(24 * 48 + x) as usize][0], sky_left_by_cube(p, Vec3::new(0.25, 0.1, 0.0), 0.1))
+    };
+    let (outer, cast) = visibility_beside(4.0);
+    eprintln!("beside the real box: {outer:.3} of the sky left, ray casting {cast:.3}");
+    assert!((outer - cast).abs() < 0.1, "the real box leaves {outer:.3} of the sky, ray casting {cast:.3}");
+    let (single, _) = visibility_beside(1.0);
+    assert!(single > 0.99, "with one volume the real box beyond it hides nothing: {single:.3}");
 }

@@ -16,6 +16,11 @@ pub struct DvctSettings {
     /// Side of the cubic volume as a multiple of the virtual content's largest bounding-box
     /// edge, centred on it. Default 2 (spec §2.13.1: "twice the largest bounding box edge").
     pub extent: f32,
+    /// Side of a second, coarser volume around the first, as a multiple of the first's side
+    /// (the same voxel count): cones that leave the first go on through it, so real surfaces
+    /// beyond the thesis's volume (a desk, a room's walls) still hide the probe and send their
+    /// bounce light. 1 turns it off (the thesis's single volume). Default 4.
+    pub outer_scale: f32,
     /// Diameter-to-length ratio of the nine diffuse cones. Default 0.6 (spec §2.13.7, [Code]).
     pub diffuse_aperture: f32,
     /// Injected bounces: 1 is the thesis's single bounce (spec §2.13.9: the unlit side of a
@@ -26,7 +31,7 @@ pub struct DvctSettings {
 
 impl Default for DvctSettings {
     fn default() -> Self {
-        Self { resolution: 128, extent: 2.0, diffuse_aperture: 0.6, bounces: 2 }
+        Self { resolution: 128, extent: 2.0, outer_scale: 4.0, diffuse_aperture: 0.6, bounces: 2 }
     }
 }
 
@@ -42,6 +47,11 @@ impl DvctSettings {
             self.extent.is_finite() && (1.0..=64.0).contains(&self.extent),
             "dvct.extent",
             format!("must be between 1 and 64 times the virtual content's size, got {}", self.extent),
+        )?;
+        check(
+            self.outer_scale.is_finite() && (1.0..=16.0).contains(&self.outer_scale),
+            "dvct.outer_scale",
+            format!("must be between 1 and 16 times the inner volume's side, got {}", self.outer_scale),
         )?;
         check(
             self.diffuse_aperture.is_finite() && (0.05..=2.0).contains(&self.diffuse_aperture),
@@ -62,6 +72,8 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("dvct.resolution"));
         let bad = DvctSettings { extent: 0.5, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.extent"));
+        let bad = DvctSettings { outer_scale: 0.5, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("dvct.outer_scale"));
         let bad = DvctSettings { bounces: 3, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.bounces"));
         DvctSettings::default().validate().unwrap();

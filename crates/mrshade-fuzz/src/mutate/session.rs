@@ -37,6 +37,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("shadows.normal_offset", Kind::Number),
     ("dvct.resolution", Kind::Number),
     ("dvct.extent", Kind::Number),
+    ("dvct.outer_scale", Kind::Number),
     ("dvct.diffuse_aperture", Kind::Number),
     ("dvct.bounces", Kind::Number),
     ("dlpv.resolution", Kind::Number),

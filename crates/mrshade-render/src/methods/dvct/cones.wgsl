@@ -1,7 +1,10 @@
 // Cone tracing through the prefiltered volumes (Franke §2.13.2 step 4, Eq. 5.18–5.19 in the
 // premultiplied front-to-back form of [Code]): both solutions along the same cone, the same
 // samples, `rv` through the real+virtual volume and `r` through the real-only one.
-// The including pass declares `params`; group 1 is the volumes (VolumePair::sampled).
+// The including pass declares `params`, the volume it works in; group 1 is that volume's
+// textures (VolumePair::sampled) and those of the coarser outer volume around it (`outer`,
+// settings `dvct.outer_scale`) that cones go on through when they leave it (the same volume
+// again where there is no outer one: a cone that left it meets nothing there).
 
 @group(1) @binding(0) var volume_rv: texture_3d<f32>;
 @group(1) @binding(1) var volume_r: texture_3d<f32>;
@@ -12,6 +15,15 @@
 @group(1) @binding(6) var volume_r_x: texture_3d<f32>;
 @group(1) @binding(7) var volume_r_y: texture_3d<f32>;
 @group(1) @binding(8) var volume_r_z: texture_3d<f32>;
+@group(1) @binding(9) var<uniform> outer: VolumeParams;
+@group(1) @binding(10) var outer_rv: texture_3d<f32>;
+@group(1) @binding(11) var outer_r: texture_3d<f32>;
+@group(1) @binding(12) var outer_rv_x: texture_3d<f32>;
+@group(1) @binding(13) var outer_rv_y: texture_3d<f32>;
+@group(1) @binding(14) var outer_rv_z: texture_3d<f32>;
+@group(1) @binding(15) var outer_r_x: texture_3d<f32>;
+@group(1) @binding(16) var outer_r_y: texture_3d<f32>;
+@group(1) @binding(17) var outer_r_z: texture_3d<f32>;
 
 struct Cone {
     // Premultiplied radiance seen along the cone, and its opacity, of each solution.
@@ -21,11 +33,11 @@ struct Cone {
     peak: vec2f,
 }
 
-// Enter and exit distances of the ray `o + t·d` through the volume (exit < enter: missed).
-fn volume_span(o: vec3f, d: vec3f) -> vec2f {
+// Enter and exit distances of the ray `o + t·d` through the volume `v` (exit < enter: missed).
+fn volume_span(v: VolumeParams, o: vec3f, d: vec3f) -> vec2f {
     let inv = 1.0 / select(d, vec3f(1e-12), abs(d) < vec3f(1e-12));
-    let lo = (params.origin.xyz - o) * inv;
-    let hi = (params.origin.xyz + volume_side() - o) * inv;
+    let lo = (v.origin.xyz - o) * inv;
+    let hi = (v.origin.xyz + v.origin.w * f32(v.info.x) - o) * inv;
     let near = min(lo, hi);
     let far = max(lo, hi);
     return vec2f(max(max(near.x, near.y), near.z), min(min(far.x, far.y), far.z));
@@ -80,19 +92,45 @@ const SAMPLE_PER_DIAMETER: f32 = 0.5;
 
 // Marches from `o` along unit `d` with steps of SAMPLE_PER_DIAMETER × the cone's width
 // (`aperture`: its diameter per unit length), sampling the mip level whose voxels are that
-// step's side, from `start`
-// until both solutions are opaque or the cone leaves the volume, its samples kept clear of the
-// plane of normal `n` through the surface it leaves. Outside the volume there is nothing:
-// what a cone does not hit there is the probe's (its opacity says how much).
+// step's side, from `start` until both solutions are opaque or the cone leaves the volume (and
+// then the outer one, for a cone that starts inside the volume), its samples kept clear of the
+// plane of normal `n` through the surface it leaves. Outside the volumes there is nothing:
+// what a cone does not hit there is the probe's (its opacity says how much). A cone from
+// outside the volume sees only the volume (where the virtual content is: the two solutions
+// differ nowhere else), the pixels that the outer volume alone holds costing no more than
+// without it.
 fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
     var out = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0));
-    let span = volume_span(o, d);
-    let voxel = voxel_side();
-    let max_lod = f32(params.info.y - 1u);
-    let extent = 1.0 / volume_side();
+    let lift = CONE_START_VOXELS * voxel_side();
+    let exit = march(&out, params, true, o, d, aperture, start, n, lift);
+    let lo = params.origin.xyz;
+    if (all(o >= lo) && all(o <= lo + volume_side())) {
+        march(&out, outer, false, o, d, aperture, max(start, exit), n, lift);
+    }
+    return out;
+}
+
+// The part of trace_cone in volume `v` (`inner`: the pass's own volume, else the outer one),
+// from `start`; returns where the cone leaves `v`. `lift`: the height above the plane of `n`
+// that the cone starts at.
+fn march(
+    out: ptr<function, Cone>,
+    v: VolumeParams,
+    inner: bool,
+    o: vec3f,
+    d: vec3f,
+    aperture: f32,
+    start: f32,
+    n: vec3f,
+    lift: f32,
+) -> f32 {
+    let span = volume_span(v, o, d);
+    let voxel = v.origin.w;
+    let max_lod = f32(v.info.y - 1u);
+    let extent = 1.0 / (voxel * f32(v.info.x));
     var t = max(start, span.x);
     for (var i = 0u; i < 256u; i++) {
-        if (t >= span.y || (out.rv.a >= 0.99 && out.r.a >= 0.99)) { break; }
+        if (t >= span.y || ((*out).rv.a >= 0.99 && (*out).r.a >= 0.99)) { break; }
         let diameter = max(voxel, aperture * t);
         let side = max(voxel, SAMPLE_PER_DIAMETER * diameter);
         let lod = min(log2(side / voxel), max_lod);
@@ -106,9 +144,9 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
         // "self-intersect at grazing angles"), the surface shadowing and lighting itself: the
         // desk under desk-spot-virtual's lamp lit itself 2–3 % too bright around the sphere.
         let centre = o + d * t;
-        let height = dot(d, n) * t + CONE_START_VOXELS * voxel;
+        let height = dot(d, n) * t + lift;
         let coarser = voxel * exp2(ceil(lod));
-        let uvw = (centre + n * max(1.5 * coarser - height, 0.0) - params.origin.xyz) * extent;
+        let uvw = (centre + n * max(1.5 * coarser - height, 0.0) - v.origin.xyz) * extent;
         // Lifted out of the volume: nothing there (the sampler's clamp would repeat the
         // border's voxels, at the coarsest level the whole volume's mean: the floor lit
         // itself through it).
@@ -116,14 +154,21 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
             t += side;
             continue;
         }
-        let s_rv = sample_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
-        let s_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
-        out.rv += (1.0 - out.rv.a) * s_rv;
-        out.r += (1.0 - out.r.a) * s_r;
-        out.peak = max(out.peak, vec2f(s_rv.a, s_r.a));
+        var s_rv: vec4f;
+        var s_r: vec4f;
+        if (inner) {
+            s_rv = sample_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
+            s_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
+        } else {
+            s_rv = sample_volume(outer_rv, outer_rv_x, outer_rv_y, outer_rv_z, uvw, lod, d);
+            s_r = sample_volume(outer_r, outer_r_x, outer_r_y, outer_r_z, uvw, lod, d);
+        }
+        (*out).rv += (1.0 - (*out).rv.a) * s_rv;
+        (*out).r += (1.0 - (*out).r.a) * s_r;
+        (*out).peak = max((*out).peak, vec2f(s_rv.a, s_r.a));
         t += side;
     }
-    return out;
+    return span.y;
 }
 
 // How much of the probe a cone's solutions hide (rv, r). Front to back, the samples' opacities

@@ -11,53 +11,62 @@
 //! per voxel (each voxel lit through the shadow maps for both solutions) instead of per RSM
 //! texel with racing writes; and a second bounce is injected (`dvct.bounces`).
 
+mod cascade;
 mod volume;
 
-pub use volume::{VolumePair, VolumeParams, levels};
+pub use volume::{Volume, VolumePair, VolumeParams, levels};
 
-use super::around::place;
+use cascade::{Cascade, VOXEL_BYTES};
 
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::passes::direct::ShadowParams;
 use crate::raster::Rasterizer;
-use crate::scene_gpu::GpuProbe;
+use crate::scene_gpu::{Geometry, GpuProbe};
 use anyhow::{Result, bail};
-use glam::{UVec4, Vec4};
 use mrshade_core::settings::RenderSettings;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use wgpu::util::DeviceExt;
 
-/// Bytes per voxel of the voxelisation (a real and a virtual triangle).
-const VOXEL_BYTES: u64 = 8;
+/// The start of both groups over the triangles: the volume's uniform and the geometry.
+fn geometry<'a>(c: &'a Cascade, g: &'a Geometry) -> Vec<wgpu::BindingResource<'a>> {
+    vec![
+        c.params_buffer.as_entire_binding(),
+        g.instances.as_entire_binding(),
+        g.vertices.as_entire_binding(),
+        g.indices.as_entire_binding(),
+        g.triangles.as_entire_binding(),
+    ]
+}
+
+/// A pass over every voxel of one cascade: its pipeline and groups.
+type VoxelPass = (wgpu::ComputePipeline, Vec<wgpu::BindGroup>);
 
 /// The method's passes and volumes.
 pub struct DvctMethod {
-    params: VolumeParams,
-    params_buffer: wgpu::Buffer,
-    extent: f32,
+    /// The volume around the virtual content, then the outer one (`dvct.outer_scale` > 1).
+    cascades: Vec<Cascade>,
     scene_box: Option<(glam::Vec3, glam::Vec3)>,
-    voxels: wgpu::Buffer,
-    voxel_words: u32,
     clear: wgpu::ComputePipeline,
     voxelize: wgpu::ComputePipeline,
-    voxelize_group: wgpu::BindGroup,
-    light: wgpu::ComputePipeline,
-    light_groups: [wgpu::BindGroup; 4],
-    /// The second bounce's pipeline and groups (`dvct.bounces` = 2).
-    bounce: Option<(wgpu::ComputePipeline, [wgpu::BindGroup; 4])>,
+    /// Per cascade.
+    voxelize_groups: Vec<wgpu::BindGroup>,
+    /// The first bounce, per cascade.
+    light: Vec<VoxelPass>,
+    /// The second bounce, per cascade (`dvct.bounces` = 2).
+    bounce: Vec<VoxelPass>,
     mips: wgpu::ComputePipeline,
-    /// Per volume pair, per level from 1: the group and the level's side.
-    mip_groups: Vec<Vec<(wgpu::BindGroup, u32)>>,
+    /// Per volume pair (first bounces, then second bounces, cascade by cascade), per level from
+    /// 1 and solution: the group and the level's side.
+    first_mips: Vec<(wgpu::BindGroup, u32)>,
+    second_mips: Vec<(wgpu::BindGroup, u32)>,
     /// The per-pixel pass, over the internal size.
     gather: Dispatch,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
-    /// The volumes the pixels' cones read (the second bounce's, else the first's).
-    pub volumes: VolumePair,
     stale_voxels: bool,
     stale_light: bool,
 }
@@ -81,11 +90,12 @@ pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
 /// GPU bytes of the method, item by item.
 pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers: u64) -> Vec<(&'static str, u64)> {
     let res = settings.dvct.resolution;
-    let pairs = settings.dvct.bounces as u64;
+    let cascades = 1 + (settings.dvct.outer_scale > 1.0) as u64;
+    let pairs = settings.dvct.bounces as u64 * cascades;
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
-        ("dvct voxels (dvct.resolution³)", (res as u64).pow(3) * VOXEL_BYTES),
-        ("dvct volumes (dvct.resolution³ × bounces, with mips)", pairs * VolumePair::bytes(res)),
+        ("dvct voxels (dvct.resolution³ per volume)", cascades * (res as u64).pow(3) * VOXEL_BYTES),
+        ("dvct light volumes (dvct.resolution³ × bounces per volume, with mips)", pairs * VolumePair::bytes(res)),
     ]
 }
 
@@ -106,24 +116,13 @@ impl DvctMethod {
         let cs = wgpu::ShaderStages::COMPUTE;
         let g = &scene.geometry;
         let scene_box = session.scene.bounds();
-        let (origin, side) = place(g.virtual_box(), scene_box, settings.extent);
-        let params = VolumeParams {
-            origin: origin.extend(side / res as f32),
-            info: UVec4::new(res, levels(res), g.triangle_count, (settings.bounces == 1) as u32),
-            cone: Vec4::new(settings.diffuse_aperture, 0.0, 0.0, 0.0),
-        };
-        let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("dvct/params"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
-        let voxel_words = res * res * res * 2;
-        let voxels = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("dvct/voxels"),
-            size: voxel_words as u64 * 4,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let boxes = (g.virtual_box(), scene_box);
+        let mut cascades = vec![Cascade::new(device, "dvct", settings, settings.extent, boxes, g.triangle_count)];
+        if settings.outer_scale > 1.0 {
+            let extent = settings.extent * settings.outer_scale;
+            cascades.push(Cascade::new(device, "dvct/outer", settings, extent, boxes, g.triangle_count));
+        }
+        let outermost = cascades.last().expect("one cascade");
 
         // Voxelisation.
         // Both groups over the triangles start with the volume's uniform and the geometry.
@@ -137,16 +136,14 @@ impl DvctMethod {
         let mut entries = geometry_entries.to_vec();
         entries.push(bind::storage_rw(5, cs));
         let voxelize_layout = bind::layout(device, "dvct/voxelize_layout", &entries);
-        let geometry = [
-            params_buffer.as_entire_binding(),
-            g.instances.as_entire_binding(),
-            g.vertices.as_entire_binding(),
-            g.indices.as_entire_binding(),
-            g.triangles.as_entire_binding(),
-        ];
-        let mut resources = geometry.to_vec();
-        resources.push(voxels.as_entire_binding());
-        let voxelize_group = bind::group(device, "dvct/voxelize_group", &voxelize_layout, &resources);
+        let voxelize_groups = cascades
+            .iter()
+            .map(|c| {
+                let mut resources = geometry(c, g);
+                resources.push(c.voxels.as_entire_binding());
+                bind::group(device, "dvct/voxelize_group", &voxelize_layout, &resources)
+            })
+            .collect();
         let voxelize = compute_pipeline(device, "dvct/voxelize", VOXELIZE_SHADER, &[&voxelize_layout]);
         let clear = compute_pipeline_entry(device, "dvct/clear", VOXELIZE_SHADER, "clear", &[&voxelize_layout]);
 
@@ -154,10 +151,12 @@ impl DvctMethod {
         let mut entries = geometry_entries.to_vec();
         entries.extend([bind::storage(5, cs), bind::storage(6, cs)]);
         let surface_layout = bind::layout(device, "dvct/surface_layout", &entries);
-        let mut resources = geometry.to_vec();
-        resources.push(scene.materials.buffer.as_entire_binding());
-        resources.push(voxels.as_entire_binding());
-        let surface_group = bind::group(device, "dvct/surface_group", &surface_layout, &resources);
+        let surface_group = |c: &Cascade| {
+            let mut resources = geometry(c, g);
+            resources.push(scene.materials.buffer.as_entire_binding());
+            resources.push(c.voxels.as_entire_binding());
+            bind::group(device, "dvct/surface_group", &surface_layout, &resources)
+        };
         let storage_3d = |i| bind::storage_texture_of(i, volume::FORMAT, wgpu::TextureViewDimension::D3);
         let out_layout = bind::layout(device, "dvct/out_layout", &[storage_3d(0), storage_3d(1)]);
         let out_group = |pair: &VolumePair, label: &str| {
@@ -179,7 +178,6 @@ impl DvctMethod {
         };
 
         // First bounce.
-        let first = VolumePair::new(device, "dvct/first_bounce", res);
         let shadow_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dvct/shadow_params"),
             contents: bytemuck::bytes_of(&ShadowParams::new(&session.settings.shadows, false)),
@@ -214,18 +212,24 @@ impl DvctMethod {
         let mut resources = scene.probe.resources().to_vec();
         resources.extend(textures.clone());
         let probe_textures_group = bind::group(device, "dvct/probe_textures_group", &probe_textures_layout, &resources);
-        let light = compute_pipeline(
+        let light_pipeline = compute_pipeline(
             device,
             "dvct/light",
             LIGHT_SHADER,
             &[&surface_layout, &lights_layout, &probe_textures_layout, &out_layout],
         );
-        let light_groups = [
-            surface_group.clone(),
-            lights_group,
-            probe_textures_group,
-            out_group(&first, "dvct/first_bounce_out_group"),
-        ];
+        let light = cascades
+            .iter()
+            .map(|c| {
+                let groups = vec![
+                    surface_group(c),
+                    lights_group.clone(),
+                    probe_textures_group.clone(),
+                    out_group(&c.first, "dvct/first_bounce_out_group"),
+                ];
+                (light_pipeline.clone(), groups)
+            })
+            .collect();
 
         // Sampled volumes (the second bounce's and the pixels' cones).
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -235,21 +239,26 @@ impl DvctMethod {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        // cones.wgsl's group 1: the bases, the sampler, the axis chains (VolumePair::sampled).
+        // cones.wgsl's group 1: the volume's bases, the sampler, its axis chains, then the outer
+        // volume's uniform, bases and chains (VolumePair::sampled).
         let volume_3d = |i| bind::texture(i, cs, filterable, wgpu::TextureViewDimension::D3);
         let mut entries = vec![volume_3d(0), volume_3d(1), bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering)];
         entries.extend((3..9).map(volume_3d));
+        entries.push(bind::uniform(9, cs));
+        entries.extend((10..18).map(volume_3d));
         let volume_layout = bind::layout(device, "dvct/volume_layout", &entries);
-        let volume_group = |pair: &VolumePair, label: &str| {
+        let volume_group = |pair: &VolumePair, outer: &VolumePair, outer_params: &wgpu::Buffer, label: &str| {
             let [rv, r, axes @ ..] = &pair.sampled;
             let mut resources = vec![TextureView(rv), TextureView(r), Sampler(&sampler)];
             resources.extend(axes.iter().map(TextureView));
+            resources.push(outer_params.as_entire_binding());
+            resources.extend(outer.sampled.iter().map(TextureView));
             bind::group(device, label, &volume_layout, &resources)
         };
 
-        // Second bounce.
-        let (bounce, volumes) = if settings.bounces >= 2 {
-            let second = VolumePair::new(device, "dvct/second_bounce", res);
+        // Second bounce: each cascade's voxels gather its first bounce and the outer one's.
+        let mut bounce = Vec::new();
+        if settings.bounces >= 2 {
             let mut entries = GpuProbe::layout_entries(cs).to_vec();
             entries.extend(texture_entries(4));
             entries.push(bind::uniform(7, cs));
@@ -264,16 +273,17 @@ impl DvctMethod {
                 BOUNCE_SHADER,
                 &[&surface_layout, &volume_layout, &textures_layout, &out_layout],
             );
-            let groups = [
-                surface_group,
-                volume_group(&first, "dvct/first_bounce_group"),
-                textures_group,
-                out_group(&second, "dvct/second_bounce_out_group"),
-            ];
-            (Some((pipeline, groups)), Some(second))
-        } else {
-            (None, None)
-        };
+            for c in &cascades {
+                let second = c.second.as_ref().expect("two bounces");
+                let groups = vec![
+                    surface_group(c),
+                    volume_group(&c.first, &outermost.first, &outermost.params_buffer, "dvct/first_bounce_group"),
+                    textures_group.clone(),
+                    out_group(second, "dvct/second_bounce_out_group"),
+                ];
+                bounce.push((pipeline.clone(), groups));
+            }
+        }
 
         // Mipmaps: the three axis chains of one solution per dispatch.
         let finer = |i| {
@@ -286,30 +296,30 @@ impl DvctMethod {
             &[finer(0), finer(1), finer(2), storage_3d(3), storage_3d(4), storage_3d(5)],
         );
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
-        let chain = |pair: &VolumePair| {
+        let chain = |pairs: Vec<&VolumePair>| {
             let mut groups = Vec::new();
-            for level in 1..levels(res) {
-                for volume in [&pair.rv, &pair.r] {
-                    let finer = volume.level(level - 1);
-                    let out = volume.level(level);
-                    let resources: Vec<_> = finer.iter().chain(&out).map(TextureView).collect();
-                    groups.push((bind::group(device, "dvct/mips_group", &mips_layout, &resources), res >> level));
+            for pair in pairs {
+                for level in 1..levels(res) {
+                    for volume in [&pair.rv, &pair.r] {
+                        let finer = volume.level(level - 1);
+                        let out = volume.level(level);
+                        let resources: Vec<_> = finer.iter().chain(&out).map(TextureView).collect();
+                        groups.push((bind::group(device, "dvct/mips_group", &mips_layout, &resources), res >> level));
+                    }
                 }
             }
             groups
         };
-        let mut mip_groups = vec![chain(&first)];
-        if let Some(second) = &volumes {
-            mip_groups.push(chain(second));
-        }
-        let volumes = volumes.unwrap_or(first);
+        let first_mips = chain(cascades.iter().map(|c| &c.first).collect());
+        let second_mips = chain(cascades.iter().filter_map(|c| c.second.as_ref()).collect());
 
         // The pixels' cones.
+        let inner = &cascades[0];
         let (gbuffer_layout, gbuffer_group) = super::pixel_inputs(
             device,
             "dvct/gbuffer",
             frame_uniforms,
-            &params_buffer,
+            &inner.params_buffer,
             gbuffer,
             &scene.materials.buffer,
         );
@@ -324,53 +334,66 @@ impl DvctMethod {
         );
         let gather_groups = vec![
             gbuffer_group,
-            volume_group(&volumes, "dvct/volume_group"),
+            volume_group(inner.lit(), outermost.lit(), &outermost.params_buffer, "dvct/volume_group"),
             bind::group(device, "dvct/indirect_group", &indirect_layout, &indirect.resources()),
             bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources()),
         ];
         Self {
-            params,
-            params_buffer,
-            extent: settings.extent,
+            cascades,
             scene_box,
-            voxels,
-            voxel_words,
             clear,
             voxelize,
-            voxelize_group,
+            voxelize_groups,
             light,
-            light_groups,
             bounce,
             mips,
-            mip_groups,
+            first_mips,
+            second_mips,
             gather: Dispatch {
                 pipeline: gather,
                 groups: gather_groups,
                 workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
             },
             indirect,
-            volumes,
             stale_voxels: true,
             stale_light: true,
         }
     }
 
-    /// The volume's uniform (where the cube lies).
+    /// The uniform of the volume around the virtual content (where the cube lies).
     pub fn params(&self) -> VolumeParams {
-        self.params
+        self.cascades[0].params
     }
 
-    /// The voxelisation: per voxel, the real and the virtual triangle + 1 (0: empty).
+    /// The voxelisation of the volume around the virtual content: per voxel, the real and the
+    /// virtual triangle + 1 (0: empty).
     pub fn voxels(&self) -> &wgpu::Buffer {
-        &self.voxels
+        &self.cascades[0].voxels
     }
 
-    fn record_mips(&self, pass: &mut wgpu::ComputePass<'_>, pair: usize) {
+    /// The light volumes the pixels' cones read in the volume around the virtual content (the
+    /// second bounce's, else the first's).
+    pub fn volumes(&self) -> &VolumePair {
+        self.cascades[0].lit()
+    }
+
+    fn record_mips(&self, pass: &mut wgpu::ComputePass<'_>, groups: &[(wgpu::BindGroup, u32)]) {
         pass.set_pipeline(&self.mips);
-        for (group, side) in &self.mip_groups[pair] {
+        for (group, side) in groups {
             pass.set_bind_group(0, group, &[]);
             let n = side.div_ceil(4);
             pass.dispatch_workgroups(n, n, n);
+        }
+    }
+
+    fn record_voxel_passes(&self, pass: &mut wgpu::ComputePass<'_>, passes: &[VoxelPass]) {
+        let groups = self.cascades[0].params.info.x.div_ceil(4);
+        for (pipeline, bind_groups) in passes {
+            pass.set_pipeline(pipeline);
+            for (i, g) in bind_groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, g, &[]);
+            }
+            pass.dispatch_workgroups(groups, groups, groups);
         }
     }
 }
@@ -378,44 +401,33 @@ impl DvctMethod {
 impl LightTransport for DvctMethod {
     fn prepare(&mut self, queue: &wgpu::Queue, change: &FrameChange) {
         if change.geometry_moved || change.vertices_deformed {
-            // The cube follows the virtual content (spec §2.12.7: "kept synchronous").
-            let res = self.params.info.x;
-            let (origin, side) = place(change.geometry.virtual_box(), self.scene_box, self.extent);
-            self.params.origin = origin.extend(side / res as f32);
-            queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
+            let boxes = (change.geometry.virtual_box(), self.scene_box);
+            for c in &mut self.cascades {
+                c.follow(queue, boxes);
+            }
             self.stale_voxels = true;
         }
         self.stale_light |= self.stale_voxels || change.moved_light_layers.is_some();
     }
 
     fn record(&mut self, rec: &mut Recorder, _: &Rasterizer) {
-        let res = self.params.info.x;
-        let groups = res.div_ceil(4);
         if std::mem::take(&mut self.stale_voxels) {
             rec.compute(Self::VOXELIZE_LABEL, |pass| {
-                pass.set_bind_group(0, &self.voxelize_group, &[]);
-                pass.set_pipeline(&self.clear);
-                dispatch_linear(pass, self.voxel_words, 64);
-                pass.set_pipeline(&self.voxelize);
-                dispatch_linear(pass, self.params.info.z, 1);
+                for (c, group) in self.cascades.iter().zip(&self.voxelize_groups) {
+                    pass.set_bind_group(0, group, &[]);
+                    pass.set_pipeline(&self.clear);
+                    dispatch_linear(pass, c.voxel_words, 64);
+                    pass.set_pipeline(&self.voxelize);
+                    dispatch_linear(pass, c.params.info.z, 1);
+                }
             });
         }
         if std::mem::take(&mut self.stale_light) {
             rec.compute(Self::LIGHT_LABEL, |pass| {
-                pass.set_pipeline(&self.light);
-                for (i, g) in self.light_groups.iter().enumerate() {
-                    pass.set_bind_group(i as u32, g, &[]);
-                }
-                pass.dispatch_workgroups(groups, groups, groups);
-                self.record_mips(pass, 0);
-                if let Some((pipeline, bind_groups)) = &self.bounce {
-                    pass.set_pipeline(pipeline);
-                    for (i, g) in bind_groups.iter().enumerate() {
-                        pass.set_bind_group(i as u32, g, &[]);
-                    }
-                    pass.dispatch_workgroups(groups, groups, groups);
-                    self.record_mips(pass, 1);
-                }
+                self.record_voxel_passes(pass, &self.light);
+                self.record_mips(pass, &self.first_mips);
+                self.record_voxel_passes(pass, &self.bounce);
+                self.record_mips(pass, &self.second_mips);
             });
         }
         rec.compute(Self::LABEL, |pass| self.gather.record(pass));
