@@ -42,6 +42,7 @@ const MODULES: &[(&str, &str)] = &[
     ("dvct/bounce", dvct::BOUNCE_SHADER),
     ("dvct/mips", dvct::MIPS_SHADER),
     ("dvct/cones", dvct::GATHER_SHADER),
+    ("dvct/resolve", dvct::RESOLVE_SHADER),
     ("probe_sh", mrshade_render::passes::probe_sh::SHADER),
     ("prt", mrshade_render::prt::SHADER),
     ("dlpv/inject", dlpv::INJECT_SHADER),

@@ -27,15 +27,32 @@ pub struct DvctSettings {
     /// virtual object is black); 2 re-injects the first bounce, gathered per voxel by six
     /// cones, so light that reached a surface indirectly bounces on. Default 2.
     pub bounces: u32,
+    /// Trace the pixels' cones once per 2 × 2 block, from its first covered pixel, and give
+    /// each pixel the light of the blocks around it that lie on the same surface (depth and
+    /// normal alike), under its own material: a quarter of the cones (diffuse light and the
+    /// probe's shadow vary slowly, as in [CNS+11]). `false` traces every pixel. Default true.
+    pub half_resolution: bool,
 }
 
 impl Default for DvctSettings {
     fn default() -> Self {
-        Self { resolution: 128, extent: 2.0, outer_scale: 4.0, diffuse_aperture: 0.6, bounces: 2 }
+        Self {
+            resolution: 128,
+            extent: 2.0,
+            outer_scale: 4.0,
+            diffuse_aperture: 0.6,
+            bounces: 2,
+            half_resolution: true,
+        }
     }
 }
 
 impl DvctSettings {
+    /// Pixels per side of the blocks the cones are traced once for.
+    pub fn trace_scale(&self) -> u32 {
+        if self.half_resolution { 2 } else { 1 }
+    }
+
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
         check(

@@ -40,6 +40,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.outer_scale", Kind::Number),
     ("dvct.diffuse_aperture", Kind::Number),
     ("dvct.bounces", Kind::Number),
+    ("dvct.half_resolution", Kind::Bool),
     ("dlpv.resolution", Kind::Number),
     ("dlpv.propagation_steps", Kind::Number),
     ("dlpv.rsm_resolution", Kind::Number),

@@ -45,7 +45,7 @@ impl Cascade {
         let params = VolumeParams {
             origin: origin.extend(side / res as f32),
             info: UVec4::new(res, levels(res), triangles, (settings.bounces == 1) as u32),
-            cone: Vec4::new(settings.diffuse_aperture, 0.0, 0.0, 0.0),
+            cone: Vec4::new(settings.diffuse_aperture, settings.trace_scale() as f32, 0.0, 0.0),
         };
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}/params")),

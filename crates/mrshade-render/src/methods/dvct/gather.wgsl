@@ -1,12 +1,13 @@
-// Per-pixel cone tracing (Franke §2.13.3–§2.13.5, Eq. 5.21–5.25) into the method's
-// IndirectLight: the nine diffuse cones gather the injected bounce light of both solutions
+// Per-pixel cone tracing (Franke §2.13.3–§2.13.5, Eq. 5.21–5.25), once per trace texel
+// (texel.wgsl): the nine diffuse cones gather the injected bounce light of both solutions
 // (T_Δ² on real pixels as L_rv − L_r, T_ρ² on virtual ones) and their opacity shadows the
 // probe's light per channel (Σw·V_rv, Σw·V_r, Σw with w the probe's light in a cone's
 // direction times its weight); one cone along the reflected view ray, as wide as the GGX lobe
-// of the surface's roughness, adds the glossy reflection of what the volumes hold (virtual
+// of the surface's roughness, gathers the glossy reflection of what the volumes hold (virtual
 // objects mirrored in a real desk). Mirror-like and transmissive materials leave that to the
-// specular stage. Pixels whose cones miss the volume get no indirect light and an unshadowed
-// probe, as with `direct`.
+// specular stage. Written as irradiance and radiance, before any material: resolve.wgsl
+// applies each pixel's own. Pixels whose cones miss the volume get no indirect light and an
+// unshadowed probe, as with `direct`.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: VolumeParams;
@@ -19,7 +20,11 @@
 
 // Group 1: the volumes (cones.wgsl).
 
-// Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
+// Group 2: the trace texels' IndirectLight targets (shaders/lib/indirect_out.wgsl: the
+// diffuse cones' irradiance of both solutions and the probe's visibility sums), and the glossy
+// cone's radiance of both solutions.
+@group(2) @binding(5) var out_glossy_rv: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(6) var out_glossy_r: texture_storage_2d<rgba16float, write>;
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -35,29 +40,25 @@ fn specular_aperture(roughness: f32) -> f32 {
 
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
-    if (any(id.xy >= frame.size.xy)) { return; }
-    let pixel = vec2i(id.xy);
-    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
-    if (!is_covered(flags)) {
-        store_no_indirect(pixel);
+    let texel = vec2i(id.xy);
+    if (any(texel >= trace_size())) { return; }
+    let pixel = representative(texel);
+    if (pixel.x < 0) {
+        store_no_indirect(texel);
+        textureStore(out_glossy_rv, texel, vec4f(0.0));
+        textureStore(out_glossy_r, texel, vec4f(0.0));
         return;
     }
-    var s = pixel_surface(pixel);
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    let s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
-    s.transmission = m.transmission.x;
-    let r_p = r_of(flags);
-
-    let o = cone_origin(s.position, s.normal);
     let e = gather_diffuse(s.position, s.normal);
-    let specular_albedo = env_specular_albedo(s);
-    let diffuse = env_diffuse_weight(s, specular_albedo) * s.base_color / PI;
-    var l_rv = diffuse * e.rv;
-    var l_r = diffuse * e.r;
+    var glossy = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0));
     if (!is_traced(m)) {
         let d = reflect(-s.view, s.normal);
-        let hit = trace_cone(o, d, specular_aperture(s.roughness), voxel_side(), s.normal);
-        l_rv += specular_albedo * hit.rv.rgb;
-        l_r += specular_albedo * hit.r.rgb;
+        glossy = trace_cone(cone_origin(s.position, s.normal), d, specular_aperture(s.roughness), voxel_side(), s.normal);
     }
-    store_indirect(pixel, l_rv, l_r * r_p, e.env_rv, e.env_r, e.env);
+    store_indirect(texel, e.rv, e.r, e.env_rv, e.env_r, e.env);
+    textureStore(out_glossy_rv, texel, vec4f(glossy.rv.rgb, 1.0));
+    textureStore(out_glossy_r, texel, vec4f(glossy.r.rgb, 1.0));
 }

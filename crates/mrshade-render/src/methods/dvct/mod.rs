@@ -18,7 +18,7 @@ pub use volume::{Volume, VolumePair, VolumeParams, levels};
 
 use cascade::{Cascade, VOXEL_BYTES};
 
-use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
+use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight, indirect_light};
 use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::passes::direct::ShadowParams;
@@ -63,8 +63,10 @@ pub struct DvctMethod {
     /// 1 and solution: the group and the level's side.
     first_mips: Vec<(wgpu::BindGroup, u32)>,
     second_mips: Vec<(wgpu::BindGroup, u32)>,
-    /// The per-pixel pass, over the internal size.
-    gather: Dispatch,
+    /// The cones, once per trace texel (`dvct.half_resolution`).
+    trace: Dispatch,
+    /// Their light per pixel, over the internal size.
+    resolve: Dispatch,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     stale_voxels: bool,
@@ -313,7 +315,7 @@ impl DvctMethod {
         let first_mips = chain(cascades.iter().map(|c| &c.first).collect());
         let second_mips = chain(cascades.iter().filter_map(|c| c.second.as_ref()).collect());
 
-        // The pixels' cones.
+        // The pixels' cones, once per trace texel, then resolved per pixel.
         let inner = &cascades[0];
         let (gbuffer_layout, gbuffer_group) = super::pixel_inputs(
             device,
@@ -323,20 +325,52 @@ impl DvctMethod {
             gbuffer,
             &scene.materials.buffer,
         );
-        let indirect = IndirectLight::new(device, "dvct/indirect", internal_size);
-        let indirect_layout = bind::layout(device, "dvct/indirect_layout", &IndirectLight::storage_entries());
+        let scale = settings.trace_scale();
+        let trace_size = (internal_size.0.div_ceil(scale), internal_size.1.div_ceil(scale));
+        let traced = IndirectLight::new(device, "dvct/traced", trace_size);
+        let glossy = IndirectLight::new(device, "dvct/traced_glossy", trace_size).light;
+        let mut entries = IndirectLight::storage_entries().to_vec();
+        entries.extend([
+            bind::storage_texture(5, indirect_light::FORMAT),
+            bind::storage_texture(6, indirect_light::FORMAT),
+        ]);
+        let traced_layout = bind::layout(device, "dvct/traced_layout", &entries);
+        let mut resources = traced.resources().to_vec();
+        resources.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
+        let traced_group = bind::group(device, "dvct/traced_group", &traced_layout, &resources);
         let probe_layout = bind::layout(device, "dvct/probe_layout", &GpuProbe::layout_entries(cs));
-        let gather = compute_pipeline(
+        let probe_group = bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources());
+        let trace = compute_pipeline(
             device,
             "dvct/cones",
             GATHER_SHADER,
-            &[&gbuffer_layout, &volume_layout, &indirect_layout, &probe_layout],
+            &[&gbuffer_layout, &volume_layout, &traced_layout, &probe_layout],
         );
-        let gather_groups = vec![
-            gbuffer_group,
+        let trace_groups = vec![
+            gbuffer_group.clone(),
             volume_group(inner.lit(), outermost.lit(), &outermost.params_buffer, "dvct/volume_group"),
+            traced_group,
+            probe_group.clone(),
+        ];
+        let mut entries = IndirectLight::sampled_entries(0).to_vec();
+        entries.extend(IndirectLight::sampled_entries(5).into_iter().take(2));
+        let traced_sampled_layout = bind::layout(device, "dvct/traced_sampled_layout", &entries);
+        let mut resources = traced.resources().to_vec();
+        resources.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
+        let traced_sampled = bind::group(device, "dvct/traced_sampled_group", &traced_sampled_layout, &resources);
+        let indirect = IndirectLight::new(device, "dvct/indirect", internal_size);
+        let indirect_layout = bind::layout(device, "dvct/indirect_layout", &IndirectLight::storage_entries());
+        let resolve = compute_pipeline(
+            device,
+            "dvct/resolve",
+            RESOLVE_SHADER,
+            &[&gbuffer_layout, &traced_sampled_layout, &indirect_layout, &probe_layout],
+        );
+        let resolve_groups = vec![
+            gbuffer_group,
+            traced_sampled,
             bind::group(device, "dvct/indirect_group", &indirect_layout, &indirect.resources()),
-            bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources()),
+            probe_group,
         ];
         Self {
             cascades,
@@ -349,9 +383,14 @@ impl DvctMethod {
             mips,
             first_mips,
             second_mips,
-            gather: Dispatch {
-                pipeline: gather,
-                groups: gather_groups,
+            trace: Dispatch {
+                pipeline: trace,
+                groups: trace_groups,
+                workgroups: [trace_size.0.div_ceil(8), trace_size.1.div_ceil(8), 1],
+            },
+            resolve: Dispatch {
+                pipeline: resolve,
+                groups: resolve_groups,
                 workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
             },
             indirect,
@@ -430,7 +469,10 @@ impl LightTransport for DvctMethod {
                 self.record_mips(pass, &self.second_mips);
             });
         }
-        rec.compute(Self::LABEL, |pass| self.gather.record(pass));
+        rec.compute(Self::LABEL, |pass| {
+            self.trace.record(pass);
+            self.resolve.record(pass);
+        });
     }
 
     fn indirect(&self) -> Option<&IndirectLight> {
@@ -499,7 +541,7 @@ pub const BOUNCE_SHADER: &str = wgsl!(
 /// The mipmap module.
 pub const MIPS_SHADER: &str = wgsl!("mips.wgsl");
 
-/// The pixels' cones module.
+/// The pixels' cones module (once per trace texel).
 pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/gbuffer.wgsl",
@@ -510,6 +552,22 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/env.wgsl",
     "../../../shaders/lib/sampling.wgsl",
     "volume.wgsl",
+    "texel.wgsl",
     "cones.wgsl",
     "gather.wgsl",
+);
+
+/// The per-pixel resolve of the traced cones.
+pub const RESOLVE_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/brdf.wgsl",
+    "../../../shaders/lib/gbuffer_pixel.wgsl",
+    "../../../shaders/lib/indirect_out.wgsl",
+    "../../../shaders/lib/dfg.wgsl",
+    "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/geometry_weight.wgsl",
+    "volume.wgsl",
+    "texel.wgsl",
+    "resolve.wgsl",
 );

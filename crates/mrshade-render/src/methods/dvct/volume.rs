@@ -12,7 +12,7 @@ pub struct VolumeParams {
     pub origin: Vec4,
     /// Voxels per side, mip levels, triangles, unused.
     pub info: UVec4,
-    /// Diffuse cone aperture, unused…
+    /// Diffuse cone aperture, pixels per side of a trace texel (texel.wgsl), unused…
     pub cone: Vec4,
 }
 

@@ -6,7 +6,8 @@ struct VolumeParams {
     origin: vec4f,
     // voxels per side, mip levels, triangles, 1 if the first bounce takes the probe's light
     info: vec4u,
-    // diffuse cone aperture (diameter / length), unused…
+    // diffuse cone aperture (diameter / length), pixels per side of a trace texel (texel.wgsl),
+    // unused…
     cone: vec4f,
 }
 

@@ -57,12 +57,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             let q = clamp(pixel + vec2i(dx, dy), vec2i(0), vec2i(frame.size.xy) - 1);
             let dq = textureLoad(gbuffer_depth_motion, q, 0).x;
             if (dq == 0.0) { continue; }
-            // Reversed depth is inversely proportional to distance: its relative difference
-            // is the relative difference of distances.
-            let w_depth = max(0.0, 1.0 - abs(dq - depth) / (0.03 * depth));
-            let nq = textureLoad(gbuffer_normal_roughness, q, 0).xyz;
-            let w_normal = pow(max(dot(n.xyz, nq), 0.0), 8.0);
-            let w = w_depth * w_normal;
+            let w = geometry_weight(depth, n.xyz, dq, textureLoad(gbuffer_normal_roughness, q, 0).xyz);
             if (w <= 0.0) { continue; }
             rv += w * textureLoad(in_rv, q, 0);
             r += w * textureLoad(in_r, q, 0);

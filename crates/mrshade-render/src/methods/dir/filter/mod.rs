@@ -263,7 +263,8 @@ impl FilterPass {
 pub const TEMPORAL_SHADER: &str =
     wgsl!("../../../../shaders/lib/frame.wgsl", "../../../../shaders/lib/env_visibility.wgsl", "temporal.wgsl");
 /// The filter module.
-pub const FILTER_SHADER: &str = wgsl!("../../../../shaders/lib/frame.wgsl", "filter.wgsl");
+pub const FILTER_SHADER: &str =
+    wgsl!("../../../../shaders/lib/frame.wgsl", "../../../../shaders/lib/geometry_weight.wgsl", "filter.wgsl");
 
 #[cfg(test)]
 mod tests {
