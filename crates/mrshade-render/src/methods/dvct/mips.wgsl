@@ -3,10 +3,13 @@
 // half as opaque at every level, so that a wide cone sees through it: the cornell walls let
 // the probe in and a quarter of their bounce out, and a virtual block in front of a wall took
 // probe light the wall had already stopped (its contact shadow three times too dark). Here
-// the chain of axis a composites each parent's children front to back along a (both ways,
-// averaged) and averages the four columns: a surface crossing the parent stays opaque seen
-// along its normal, half as opaque seen edge-on, and radiance keeps its ratio to opacity
-// (premultiplied). The first level reads the voxels themselves for all three axes.
+// the chain of axis a composites each parent's children front to back along a and averages
+// the four columns: a surface crossing the parent stays opaque seen along its normal, half as
+// opaque seen edge-on, and radiance keeps its ratio to opacity (premultiplied). The front child
+// is the one nearer the volume's centre, where the virtual content and the cones that matter
+// start: a wall two voxels thick shows its lit inner face to them (both orders averaged showed
+// half its bounce: the dark outer face's voxel counted as much). The first level reads the
+// voxels themselves for all three axes.
 
 @group(0) @binding(0) var finer_x: texture_3d<f32>;
 @group(0) @binding(1) var finer_y: texture_3d<f32>;
@@ -18,14 +21,18 @@
 // Front-to-back "over" of premultiplied samples.
 fn over(front: vec4f, back: vec4f) -> vec4f { return front + (1.0 - front.a) * back; }
 
-// The parent of `children` seen along `axis`. Child k sits at (k & 1, (k >> 1) & 1, k >> 2);
-// along axis a, pairs differ in bit a.
-fn parent(children: array<vec4f, 8>, axis: u32) -> vec4f {
+// The parent of `children` seen along `axis`, from the side of the volume's centre (the
+// virtual content's): its front child is the one nearer the centre, `nearer_high` when that is
+// the child with the higher coordinate. Child k sits at (k & 1, (k >> 1) & 1, k >> 2); along
+// axis a, pairs differ in bit a.
+fn parent(children: array<vec4f, 8>, axis: u32, nearer_high: bool) -> vec4f {
     let bit = 1u << axis;
     var sum = vec4f(0.0);
     for (var k = 0u; k < 8u; k++) {
         if ((k & bit) != 0u) { continue; }
-        sum += 0.5 * (over(children[k], children[k | bit]) + over(children[k | bit], children[k]));
+        let low = children[k];
+        let high = children[k | bit];
+        sum += select(over(low, high), over(high, low), nearer_high);
     }
     return sum * 0.25;
 }
@@ -41,7 +48,9 @@ fn children_of(finer: texture_3d<f32>, id: vec3u) -> array<vec4f, 8> {
 @compute @workgroup_size(4, 4, 4)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (any(id >= textureDimensions(out_x))) { return; }
-    textureStore(out_x, id, parent(children_of(finer_x, id), 0u));
-    textureStore(out_y, id, parent(children_of(finer_y, id), 1u));
-    textureStore(out_z, id, parent(children_of(finer_z, id), 2u));
+    // Parents in the lower half of an axis have the centre on their high side.
+    let nearer_high = 2u * id < textureDimensions(out_x);
+    textureStore(out_x, id, parent(children_of(finer_x, id), 0u, nearer_high.x));
+    textureStore(out_y, id, parent(children_of(finer_y, id), 1u, nearer_high.y));
+    textureStore(out_z, id, parent(children_of(finer_z, id), 2u, nearer_high.z));
 }
