@@ -335,9 +335,10 @@ impl DvctMethod {
             bind::storage_texture(6, indirect_light::FORMAT),
         ]);
         let traced_layout = bind::layout(device, "dvct/traced_layout", &entries);
-        let mut resources = traced.resources().to_vec();
-        resources.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
-        let traced_group = bind::group(device, "dvct/traced_group", &traced_layout, &resources);
+        // The trace texels' seven targets, written by the trace and read by the resolve.
+        let mut traced_views = traced.resources().to_vec();
+        traced_views.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
+        let traced_group = bind::group(device, "dvct/traced_group", &traced_layout, &traced_views);
         let probe_layout = bind::layout(device, "dvct/probe_layout", &GpuProbe::layout_entries(cs));
         let probe_group = bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources());
         let trace = compute_pipeline(
@@ -355,9 +356,7 @@ impl DvctMethod {
         let mut entries = IndirectLight::sampled_entries(0).to_vec();
         entries.extend(IndirectLight::sampled_entries(5).into_iter().take(2));
         let traced_sampled_layout = bind::layout(device, "dvct/traced_sampled_layout", &entries);
-        let mut resources = traced.resources().to_vec();
-        resources.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
-        let traced_sampled = bind::group(device, "dvct/traced_sampled_group", &traced_sampled_layout, &resources);
+        let traced_sampled = bind::group(device, "dvct/traced_sampled_group", &traced_sampled_layout, &traced_views);
         let indirect = IndirectLight::new(device, "dvct/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dvct/indirect_layout", &IndirectLight::storage_entries());
         let resolve = compute_pipeline(
