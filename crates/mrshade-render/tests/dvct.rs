@@ -204,8 +204,9 @@ fn real_surfaces_beyond_the_volume_hide_the_probe_through_the_outer_volume() {
         s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.05, 0.0], 0.05, false).cube([0.25, 0.1, 0.0], 0.1, true);
         dvct(&mut s, 32);
         // Every pixel traced: a block's light is not shared with the pixels beyond the inner
-        // volume, whose cones see the inner volume only.
-        s.extra_toml += &format!("outer_scale = {outer_scale}\nhalf_resolution = false\n");
+        // volume, whose cones see the inner volume only. The cones alone shadow the probe
+        // (its lights' maps would take over where they cover the floor).
+        s.extra_toml += &format!("outer_scale = {outer_scale}\nhalf_resolution = false\nprobe_lights = 0\n");
         let r = s.render();
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
@@ -254,4 +255,38 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
     eprintln!("probe visibility: mean, 99th percentile, max |Δ| {vis:.3?}; indirect light {light:.3?}");
     assert!(vis.0 < 0.01 && vis.1 < 0.05, "probe visibility: {vis:?}");
     assert!(light.0 < 0.03 && light.1 < 0.12, "indirect light (share of its largest value): {light:?}");
+}
+
+#[test]
+fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
+    // A dim sky with a small bright sun 45° up toward −z, a real cube on a real floor, a virtual
+    // cube beside it (the volume and the maps lie around it): the floor in the real cube's sun
+    // shadow keeps only the sky's share of the probe, the floor beyond it nearly all. The
+    // nine 60° cones alone (`probe_lights = 0`) blur the sun's shadow away.
+    let floor_visibility = |probe_lights: u32| {
+        let mut s = Setup::top_down(48);
+        s.probe = Some([0.02, 0.02, 0.02]);
+        s.sun = Some([200.0, 200.0, 200.0]);
+        s.plane(0.5, 0.0, 0.5, true).cube([0.0, 0.05, -0.1], 0.05, true).cube([0.1, 0.04, 0.05], 0.04, false);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("probe_lights = {probe_lights}\nhalf_resolution = false\n");
+        let r = s.render();
+        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let at = |target: Vec3| {
+            let (x, y) = (0..48 * 48)
+                .map(|i| (i % 48, i / 48))
+                .min_by_key(|&(x, y)| (r.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
+                .unwrap();
+            visibility.r[(y * 48 + x) as usize][0]
+        };
+        // The shadow reaches from z = −0.05 to +0.05 (the cube is 0.1 high).
+        (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.1)))
+    };
+    let (shadow, lit) = floor_visibility(32);
+    eprintln!("maps: in the sun shadow {shadow:.3}, beyond it {lit:.3}");
+    assert!(shadow < 0.15 && lit > 0.8, "in the shadow {shadow:.3}, beyond it {lit:.3}");
+    let (cones_shadow, _) = floor_visibility(0);
+    eprintln!("cones alone: in the sun shadow {cones_shadow:.3}");
+    assert!(cones_shadow > shadow + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
 }

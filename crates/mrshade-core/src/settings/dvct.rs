@@ -32,6 +32,15 @@ pub struct DvctSettings {
     /// normal alike), under its own material: a quarter of the cones (diffuse light and the
     /// probe's shadow vary slowly, as in [CNS+11]). `false` traces every pixel. Default true.
     pub half_resolution: bool,
+    /// Directional lights the probe is split into (median cut; 0 or a power of two up to 64)
+    /// whose real-only and virtual-only maps around the volume shadow the probe's light on
+    /// the pixels they cover, sharp where the probe's light comes from a small bright source
+    /// (a window, a lamp) that the nine wide cones blur (spec §2.3's directional occlusion;
+    /// as `dlpv.probe_lights`). 0 leaves the probe's shadow to the cones. Default 32.
+    pub probe_lights: u32,
+    /// Side of the maps of the probe's lights (a power of two, 32–2048). Default 128 (as
+    /// `dlpv.probe_rsm_resolution`; 256 needs 336 MB in one buffer, more than many devices bind).
+    pub probe_map_resolution: u32,
 }
 
 impl Default for DvctSettings {
@@ -43,6 +52,8 @@ impl Default for DvctSettings {
             diffuse_aperture: 0.6,
             bounces: 2,
             half_resolution: true,
+            probe_lights: 32,
+            probe_map_resolution: 128,
         }
     }
 }
@@ -75,7 +86,17 @@ impl DvctSettings {
             "dvct.diffuse_aperture",
             format!("must be between 0.05 and 2, got {}", self.diffuse_aperture),
         )?;
-        check((1..=2).contains(&self.bounces), "dvct.bounces", format!("must be 1 or 2, got {}", self.bounces))
+        check((1..=2).contains(&self.bounces), "dvct.bounces", format!("must be 1 or 2, got {}", self.bounces))?;
+        check(
+            self.probe_lights == 0 || (self.probe_lights.is_power_of_two() && self.probe_lights <= 64),
+            "dvct.probe_lights",
+            format!("must be 0 or a power of two up to 64, got {}", self.probe_lights),
+        )?;
+        check(
+            self.probe_map_resolution.is_power_of_two() && (32..=2048).contains(&self.probe_map_resolution),
+            "dvct.probe_map_resolution",
+            format!("must be a power of two between 32 and 2048 texels, got {}", self.probe_map_resolution),
+        )
     }
 }
 
@@ -93,6 +114,10 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("dvct.outer_scale"));
         let bad = DvctSettings { bounces: 3, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.bounces"));
+        let bad = DvctSettings { probe_lights: 6, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("dvct.probe_lights"));
+        let bad = DvctSettings { probe_map_resolution: 100, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("dvct.probe_map_resolution"));
         DvctSettings::default().validate().unwrap();
     }
 }

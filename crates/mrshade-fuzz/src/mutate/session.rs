@@ -38,6 +38,8 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.resolution", Kind::Number),
     ("dvct.extent", Kind::Number),
     ("dvct.outer_scale", Kind::Number),
+    ("dvct.probe_lights", Kind::Number),
+    ("dvct.probe_map_resolution", Kind::Number),
     ("dvct.diffuse_aperture", Kind::Number),
     ("dvct.bounces", Kind::Number),
     ("dvct.half_resolution", Kind::Bool),

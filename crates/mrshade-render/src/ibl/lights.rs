@@ -25,6 +25,13 @@ struct Region {
 /// `count` (a power of two) directional lights whose sum approximates `env`'s light, in world
 /// space; regions without power give no light.
 pub fn probe_lights(env: &Environment, count: u32) -> Vec<Light> {
+    probe_lights_with_spread(env, count).into_iter().map(|(light, _)| light).collect()
+}
+
+/// `probe_lights` with each light's angular radius (rad): that of a uniform cap whose mean
+/// direction cosine is the region's power-weighted one (a sun's few texels: near 0; a
+/// broad sky's region: tens of degrees), how sharp a shadow the light casts.
+pub fn probe_lights_with_spread(env: &Environment, count: u32) -> Vec<(Light, f32)> {
     if count == 0 {
         return Vec::new();
     }
@@ -38,17 +45,20 @@ pub fn probe_lights(env: &Environment, count: u32) -> Vec<Light> {
     regions
         .iter()
         .filter_map(|r| {
-            let (dir, irradiance) = summed(&image, *r);
-            let irradiance = irradiance * env.intensity;
+            let (dir, sum) = summed(&image, *r);
+            let irradiance = sum * env.intensity;
             (irradiance.max_element() > 0.0 && dir.length_squared() > 0.0).then(|| {
                 let shines = -(world_from_probe * dir.normalize());
-                Light {
+                let light = Light {
                     name: "probe light".into(),
                     kind: LightKind::Directional,
                     intensity: irradiance,
                     world_from_light: Mat4::from_quat(Quat::from_rotation_arc(Vec3::NEG_Z, shines)),
                     realness: Realness::Real,
-                }
+                };
+                // A cap of half-angle α has mean cosine (1 + cos α)/2.
+                let mean_cosine = dir.length() / luminance(sum.into()).max(1e-12);
+                (light, (2.0 * mean_cosine - 1.0).clamp(-1.0, 1.0).acos())
             })
         })
         .collect()
@@ -136,5 +146,10 @@ mod tests {
         let brightest = lights.iter().max_by(|a, b| a.intensity.x.total_cmp(&b.intensity.x)).unwrap();
         assert!(brightest.direction().dot(Vec3::NEG_Y) > 0.95, "{}", brightest.direction());
         assert!(probe_lights(&env, 0).is_empty());
+        // The sun's lights are narrow, the sky's broad.
+        let spreads = probe_lights_with_spread(&env, 8);
+        let sun = spreads.iter().max_by(|a, b| a.0.intensity.x.total_cmp(&b.0.intensity.x)).unwrap();
+        let sky = spreads.iter().min_by(|a, b| a.0.intensity.x.total_cmp(&b.0.intensity.x)).unwrap();
+        assert!(sun.1 < 0.2 && sky.1 > 0.4, "sun {} sky {}", sun.1, sky.1);
     }
 }

@@ -19,6 +19,7 @@ mod direct;
 pub mod dlpv;
 pub mod dvct;
 mod indirect_light;
+pub mod probe_maps;
 pub mod rsm;
 
 pub use indirect_light::{FORMAT as INDIRECT_FORMAT, IndirectLight, PointLight, TARGETS as INDIRECT_TARGETS};

@@ -21,48 +21,12 @@
 
 // The accumulated V_ρ, V_Δ, V_μ one after the other, each channel-major.
 @group(1) @binding(0) var<storage, read> volumes: array<vec4f>;
-// The probe's directional lights, their layers' clip_from_world, their maps' texels, their
-// layer pairs, and (pairs, map side, 0, 0).
+// The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
 @group(1) @binding(1) var<storage, read> probe_lights: array<Light>;
 @group(1) @binding(2) var<storage, read> probe_clip_from_world: array<mat4x4f>;
 @group(1) @binding(3) var<storage, read> probe_rsm: array<RsmTexel>;
 @group(1) @binding(4) var<storage, read> probe_pairs: array<vec4u>;
 @group(1) @binding(5) var<uniform> probe_info: vec4u;
-
-// Whether the map texel of `layer` at `p` holds a surface nearer to the light (along `l`,
-// toward it) than `p`, beyond `bias`.
-fn blocked(layer: u32, p: vec3f, l: vec3f, bias: f32) -> bool {
-    let res = probe_info.y;
-    let clip = probe_clip_from_world[layer] * vec4f(p, 1.0);
-    let ndc = clip.xy / clip.w;
-    if (any(abs(ndc) >= vec2f(1.0))) { return false; }
-    let st = vec2u(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * f32(res));
-    let texel = probe_rsm[(layer * res + min(st.y, res - 1u)) * res + min(st.x, res - 1u)];
-    return texel.position.w > 0.5 && dot(texel.position.xyz - p, l) > bias;
-}
-
-struct ProbeVisibility {
-    visible: vec3f,
-    weight: vec3f,
-}
-
-fn probe_visibility(p: vec3f, n: vec3f) -> ProbeVisibility {
-    var out: ProbeVisibility;
-    for (var i = 0u; i < probe_info.x; i++) {
-        let pair = probe_pairs[i];
-        let light = probe_lights[pair.z];
-        let l = -light.direction_real.xyz;
-        let w = light.intensity.rgb * max(dot(n, l), 0.0);
-        if (all(w == vec3f(0.0))) { continue; }
-        // Two texels of the map (its side is the light's texel size × resolution).
-        let bias = 2.0 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
-        let q = p + n * bias;
-        let v = select(1.0, 0.0, blocked(pair.x, q, l, bias) || blocked(pair.y, q, l, bias));
-        out.visible += w * v;
-        out.weight += w;
-    }
-    return out;
-}
 
 // Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 
@@ -123,9 +87,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let light = diffuse * max(volume_irradiance(VOLUME_RHO, s.position, s.normal), vec3f(0.0));
-    var v = probe_visibility(s.position, s.normal);
+    let v = probe_map_visibility(s.position, s.normal, 0.0);
     if (all(v.weight == vec3f(0.0))) {
-        v = ProbeVisibility(vec3f(1.0), vec3f(1.0));
+        store_indirect(pixel, light, vec3f(0.0), vec3f(1.0), vec3f(1.0), vec3f(1.0));
+        return;
     }
-    store_indirect(pixel, light, vec3f(0.0), v.visible, v.visible, v.weight);
+    store_indirect(pixel, light, vec3f(0.0), v.visible_rv, v.visible_rv, v.weight);
 }

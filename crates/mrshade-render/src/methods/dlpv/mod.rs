@@ -14,16 +14,17 @@
 mod lights;
 
 use super::around::place;
-use super::rsm::RsmPass;
+use super::probe_maps::{ProbeSet, bounding_radius, layer_pairs};
+use super::rsm::{self, RsmPass};
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::raster::Rasterizer;
 use crate::scene_gpu::{GpuProbe, ShadowLayer};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
-use lights::{LayersOf, LightSet, ProbeSet, bounding_radius, layer_pairs, power_bound};
+use lights::{LayersOf, LightSet, power_bound};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
@@ -112,33 +113,20 @@ pub fn propagate_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// Halves the maps until every set's texels fit one buffer binding.
 pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
     let dlpv = &mut settings.dlpv;
-    let max_binding = fit.max_binding;
-    for (name, layers, resolution) in [
-        ("dlpv.rsm_resolution", fit.shadow_layers, &mut dlpv.rsm_resolution),
-        ("dlpv.probe_rsm_resolution", 2 * dlpv.probe_lights as u64, &mut dlpv.probe_rsm_resolution),
-    ] {
-        let fits = |res: u64| layers * res * res * super::rsm::TEXEL_BYTES <= max_binding;
-        if !fit.shrink(name, resolution, &fits, 32) {
-            bail!("{layers} RSM layers ({name}) need more than one GPU buffer of this device holds even at 32×32");
-        }
-    }
-    Ok(())
+    rsm::fit_resolution(fit, "dlpv.rsm_resolution", fit.shadow_layers, &mut dlpv.rsm_resolution)?;
+    rsm::fit_resolution(fit, "dlpv.probe_rsm_resolution", 2 * dlpv.probe_lights as u64, &mut dlpv.probe_rsm_resolution)
 }
 
 /// GPU bytes of the method, item by item.
 pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: u64) -> Vec<(&'static str, u64)> {
     let d = &settings.dlpv;
     let cells = (d.resolution as u64).pow(3);
-    let maps = |layers: u64, res: u32| {
-        let res = res as u64;
-        layers * (res * res * (8 + super::rsm::TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES)
-    };
     vec![
         ("dlpv screen targets (output size × supersample²)", internal_pixels * 5 * 8),
-        ("dlpv RSMs (light layers × dlpv.rsm_resolution²)", maps(layers, d.rsm_resolution)),
+        ("dlpv RSMs (light layers × dlpv.rsm_resolution²)", rsm::bytes(layers, d.rsm_resolution)),
         (
             "dlpv probe-light RSMs (2 × dlpv.probe_lights × dlpv.probe_rsm_resolution²)",
-            maps(2 * d.probe_lights as u64, d.probe_rsm_resolution),
+            rsm::bytes(2 * d.probe_lights as u64, d.probe_rsm_resolution),
         ),
         ("dlpv volumes (dlpv.resolution³)", cells * CELL_BYTES * (SOURCES as u64 * 3 + 2 * VOLUMES)),
     ]
@@ -263,7 +251,7 @@ impl DlpvMethod {
             sets.push(set("scene_lights", &scene.lights, &scene.shadow_layers, false, LayersOf::Scene));
         }
         if !probe_lights.is_empty() {
-            let (probe, layers) = ProbeSet::new(device, probe_lights, cube, scene_box, shadows);
+            let (probe, layers) = ProbeSet::new(device, "dlpv", probe_lights, cube, scene_box, shadows);
             let buffer = probe.buffer.clone();
             sets.push(set("probe_lights", &buffer, &layers, true, LayersOf::Probe(probe)));
         }
@@ -503,6 +491,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/sh.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
+    "../../../shaders/lib/probe_maps.wgsl",
     "volume.wgsl",
     "gather.wgsl",
 );

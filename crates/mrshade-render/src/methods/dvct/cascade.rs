@@ -69,6 +69,12 @@ impl Cascade {
         self.second.as_ref().unwrap_or(&self.first)
     }
 
+    /// The volume's box (lower and upper corner).
+    pub fn cube(&self) -> (Vec3, Vec3) {
+        let lo = self.params.origin.truncate();
+        (lo, lo + Vec3::splat(self.params.origin.w * self.params.info.x as f32))
+    }
+
     /// Follows the virtual content (spec §2.12.7: "kept synchronous").
     pub fn follow(&mut self, queue: &wgpu::Queue, boxes: Boxes) {
         let res = self.params.info.x;

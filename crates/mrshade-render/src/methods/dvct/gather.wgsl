@@ -7,7 +7,12 @@
 // objects mirrored in a real desk). Mirror-like and transmissive materials leave that to the
 // specular stage. Written as irradiance and radiance, before any material: resolve.wgsl
 // applies each pixel's own. Pixels whose cones miss the volume get no indirect light and an
-// unshadowed probe, as with `direct`.
+// unshadowed probe, as with `direct`. Where the maps of the probe's directional lights cover
+// the pixel (`dvct.probe_lights`), they shadow the light of those narrower than a diffuse cone
+// instead of the cones: a small bright source of the probe (a window, a lamp) casts the sharp
+// shadow the answer has, which nine wide cones blur into a faint one (and a wall one voxel
+// thick lets partly through); a broad sky's lights, whose 32 hard shadows would band where the
+// answer's is soft, stay with the cones.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: VolumeParams;
@@ -30,6 +35,12 @@
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
 @group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
 @group(3) @binding(3) var env_sampler: sampler;
+// The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
+@group(3) @binding(4) var<storage, read> probe_lights: array<Light>;
+@group(3) @binding(5) var<storage, read> probe_clip_from_world: array<mat4x4f>;
+@group(3) @binding(6) var<storage, read> probe_rsm: array<RsmTexel>;
+@group(3) @binding(7) var<storage, read> probe_pairs: array<vec4u>;
+@group(3) @binding(8) var<uniform> probe_info: vec4u;
 
 // Diameter-to-length ratio of the cone that holds a GGX lobe of `roughness` (α = r²; the
 // lobe's half width is about atan α), at least a voxel's worth over the volume.
@@ -58,7 +69,25 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         let d = reflect(-s.view, s.normal);
         glossy = trace_cone(cone_origin(s.position, s.normal), d, specular_aperture(s.roughness), voxel_side(), s.normal);
     }
-    store_indirect(texel, e.rv, e.r, e.env_rv, e.env_r, e.env);
+    var env = e;
+    // The probe's light from lights narrower than a cone shadowed by their maps, the rest by
+    // the cones: the visibility ratios blended by the share of the light the sharp ones bring.
+    let maps = probe_map_visibility(s.position, s.normal, atan(0.5 * params.cone.x));
+    if (maps.covered && all(maps.weight > vec3f(0.0))) {
+        let sharp = maps.weight / maps.all_weight;
+        // In the cones' units (Σw of the probe's light), so that the resolve weighs texels of
+        // either kind alike.
+        let units = select(vec3f(1.0), e.env, all(e.env > vec3f(0.0)));
+        let cones_rv = select(vec3f(1.0), e.env_rv / e.env, e.env > vec3f(0.0));
+        let cones_r = select(vec3f(1.0), e.env_r / e.env, e.env > vec3f(0.0));
+        env.env_r = units * mix(cones_r, maps.visible_r / maps.weight, sharp);
+        env.env_rv = units * mix(cones_rv, maps.visible_rv / maps.weight, sharp);
+        if (is_real(flags)) {
+            env.env_rv = env.env_r * select(vec3f(1.0), cones_rv / cones_r, cones_r > vec3f(0.0));
+        }
+        env.env = units;
+    }
+    store_indirect(texel, env.rv, env.r, env.env_rv, env.env_r, env.env);
     textureStore(out_glossy_rv, texel, vec4f(glossy.rv.rgb, 1.0));
     textureStore(out_glossy_r, texel, vec4f(glossy.r.rgb, 1.0));
 }

@@ -9,7 +9,9 @@
 //! real-only and virtual-only shadow maps (exact, unbounded, never darkening a real shadow
 //! twice; spec §2.13.3's pitfall) instead of one shadow cone per light; the split injection is
 //! per voxel (each voxel lit through the shadow maps for both solutions) instead of per RSM
-//! texel with racing writes; and a second bounce is injected (`dvct.bounces`).
+//! texel with racing writes; a second bounce is injected (`dvct.bounces`); and the probe's
+//! light from its narrower lights is shadowed through their maps (`probe_maps`,
+//! `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl).
 
 mod cascade;
 mod volume;
@@ -18,6 +20,7 @@ pub use volume::{Volume, VolumePair, VolumeParams, levels};
 
 use cascade::{Cascade, VOXEL_BYTES};
 
+use super::probe_maps::ProbeMaps;
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight, indirect_light};
 use crate::limits::Fit;
 use crate::outputs::Aov;
@@ -25,7 +28,7 @@ use crate::passes::direct::ShadowParams;
 use crate::raster::Rasterizer;
 use crate::scene_gpu::{Geometry, GpuProbe};
 use anyhow::{Result, bail};
-use mrshade_core::settings::RenderSettings;
+use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
@@ -69,6 +72,10 @@ pub struct DvctMethod {
     resolve: Dispatch,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
+    /// The probe's lights and their maps around the inner volume (`dvct.probe_lights`).
+    probe_maps: ProbeMaps,
+    /// Where the probe's maps reach (their depth bias).
+    shadows: ShadowSettings,
     stale_voxels: bool,
     stale_light: bool,
 }
@@ -86,7 +93,8 @@ pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
     if !fit.shrink("dvct.resolution", &mut settings.dvct.resolution, &fits, 16) {
         bail!("this device cannot hold even a 16³ voxel volume for `dvct`");
     }
-    Ok(())
+    let d = &mut settings.dvct;
+    super::rsm::fit_resolution(fit, "dvct.probe_map_resolution", 2 * d.probe_lights as u64, &mut d.probe_map_resolution)
 }
 
 /// GPU bytes of the method, item by item.
@@ -98,20 +106,28 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
         ("dvct voxels (dvct.resolution³ per volume)", cascades * (res as u64).pow(3) * VOXEL_BYTES),
         ("dvct light volumes (dvct.resolution³ × bounces per volume, with mips)", pairs * VolumePair::bytes(res)),
+        (
+            "dvct probe-light maps (2 × dvct.probe_lights × dvct.probe_map_resolution²)",
+            super::rsm::bytes(2 * settings.dvct.probe_lights as u64, settings.dvct.probe_map_resolution),
+        ),
     ]
 }
 
 impl DvctMethod {
     /// GPU timing label of the voxelisation.
     pub const VOXELIZE_LABEL: &'static str = "dvct-voxelize";
-    /// GPU timing label of the injection, second bounce and mipmaps.
+    /// GPU timing label of the injection (first bounce) and its mipmaps.
     pub const LIGHT_LABEL: &'static str = "dvct-light";
+    /// GPU timing label of the second bounce and its mipmaps.
+    pub const BOUNCE_LABEL: &'static str = "dvct-bounce";
     /// GPU timing label of the pixels' cones.
     pub const LABEL: &'static str = "dvct-cones";
 
     /// Builds every pass for the session of `inputs`.
     pub fn new(inputs: &MethodInputs) -> Self {
-        let MethodInputs { ctx, session, scene, frame_uniforms, gbuffer, internal_size, shadow_maps, .. } = *inputs;
+        let MethodInputs {
+            ctx, session, scene, rasterizer, frame_uniforms, gbuffer, internal_size, shadow_maps, ..
+        } = *inputs;
         let device = &ctx.device;
         let settings = &session.settings.dvct;
         let res = settings.resolution;
@@ -341,17 +357,40 @@ impl DvctMethod {
         let traced_group = bind::group(device, "dvct/traced_group", &traced_layout, &traced_views);
         let probe_layout = bind::layout(device, "dvct/probe_layout", &GpuProbe::layout_entries(cs));
         let probe_group = bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources());
+        // The probe's lights and their maps around the inner volume (the cones' probe
+        // visibility where they cover a pixel).
+        let probe_lights = match (&session.environment, settings.probe_lights) {
+            (Some(env), n) if n > 0 => crate::ibl::probe_lights_with_spread(env, n),
+            _ => Vec::new(),
+        };
+        let probe_maps = ProbeMaps::new(
+            ctx,
+            rasterizer,
+            scene,
+            "dvct",
+            probe_lights,
+            settings.probe_map_resolution,
+            inner.cube(),
+            scene_box,
+            &session.settings.shadows,
+        );
+        let mut entries = GpuProbe::layout_entries(cs).to_vec();
+        entries.extend(ProbeMaps::layout_entries(4));
+        let trace_probe_layout = bind::layout(device, "dvct/trace_probe_layout", &entries);
+        let mut resources = scene.probe.resources().to_vec();
+        resources.extend(probe_maps.resources());
+        let trace_probe_group = bind::group(device, "dvct/trace_probe_group", &trace_probe_layout, &resources);
         let trace = compute_pipeline(
             device,
             "dvct/cones",
             GATHER_SHADER,
-            &[&gbuffer_layout, &volume_layout, &traced_layout, &probe_layout],
+            &[&gbuffer_layout, &volume_layout, &traced_layout, &trace_probe_layout],
         );
         let trace_groups = vec![
             gbuffer_group.clone(),
             volume_group(inner.lit(), outermost.lit(), &outermost.params_buffer, "dvct/volume_group"),
             traced_group,
-            probe_group.clone(),
+            trace_probe_group,
         ];
         let mut entries = IndirectLight::sampled_entries(0).to_vec();
         entries.extend(IndirectLight::sampled_entries(5).into_iter().take(2));
@@ -393,6 +432,8 @@ impl DvctMethod {
                 workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
             },
             indirect,
+            probe_maps,
+            shadows: session.settings.shadows,
             stale_voxels: true,
             stale_light: true,
         }
@@ -443,13 +484,15 @@ impl LightTransport for DvctMethod {
             for c in &mut self.cascades {
                 c.follow(queue, boxes);
             }
+            self.probe_maps.follow(queue, self.cascades[0].cube(), self.scene_box, &self.shadows);
             self.stale_voxels = true;
         }
         self.stale_light |= self.stale_voxels || change.moved_light_layers.is_some();
     }
 
-    fn record(&mut self, rec: &mut Recorder, _: &Rasterizer) {
+    fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         if std::mem::take(&mut self.stale_voxels) {
+            self.probe_maps.record(rec, rasterizer);
             rec.compute(Self::VOXELIZE_LABEL, |pass| {
                 for (c, group) in self.cascades.iter().zip(&self.voxelize_groups) {
                     pass.set_bind_group(0, group, &[]);
@@ -464,9 +507,13 @@ impl LightTransport for DvctMethod {
             rec.compute(Self::LIGHT_LABEL, |pass| {
                 self.record_voxel_passes(pass, &self.light);
                 self.record_mips(pass, &self.first_mips);
-                self.record_voxel_passes(pass, &self.bounce);
-                self.record_mips(pass, &self.second_mips);
             });
+            if !self.bounce.is_empty() {
+                rec.compute(Self::BOUNCE_LABEL, |pass| {
+                    self.record_voxel_passes(pass, &self.bounce);
+                    self.record_mips(pass, &self.second_mips);
+                });
+            }
         }
         rec.compute(Self::LABEL, |pass| {
             self.trace.record(pass);
@@ -550,6 +597,9 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
     "../../../shaders/lib/sampling.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/rsm_texel.wgsl",
+    "../../../shaders/lib/probe_maps.wgsl",
     "volume.wgsl",
     "texel.wgsl",
     "cones.wgsl",

@@ -4,8 +4,10 @@
 //! Real lights keep a real-only and a virtual-only RSM; so do virtual ones here (their
 //! union is the single RSM of the thesis, and the split costs nothing extra).
 
+use crate::limits::Fit;
 use crate::raster::{RasterViews, Rasterizer, ViewSpec};
 use crate::scene_gpu::{GpuScene, ShadowLayer};
+use anyhow::{Result, bail};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
 use mrshade_gpu::timing::Recorder;
@@ -20,6 +22,23 @@ pub const TEXEL_BYTES: u64 = 80;
 struct RsmParams {
     size: UVec4,
     scale: Vec4,
+}
+
+/// Halves `resolution` (the setting `name`) down to 32 until `layers` maps' texels fit one
+/// buffer binding of the device.
+pub(crate) fn fit_resolution(fit: &mut Fit, name: &str, layers: u64, resolution: &mut u32) -> Result<()> {
+    let max_binding = fit.max_binding;
+    let fits = |res: u64| layers * res * res * TEXEL_BYTES <= max_binding;
+    if !fit.shrink(name, resolution, &fits, 32) {
+        bail!("{layers} RSM layers ({name}) need more than one GPU buffer of this device holds even at 32×32");
+    }
+    Ok(())
+}
+
+/// GPU bytes of `layers` maps of side `resolution`: depth, texels, raster targets, views.
+pub(crate) fn bytes(layers: u64, resolution: u32) -> u64 {
+    let res = resolution as u64;
+    layers * (res * res * (8 + TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES)
 }
 
 /// The RSM of every light layer, with importance pyramids.

@@ -1,0 +1,63 @@
+// The probe's directional lights and their real-only and virtual-only maps
+// (methods/probe_maps.rs), for shadowing the probe's light at a surface point. The including
+// shader binds, in one group: probe_lights (array<Light>), probe_clip_from_world
+// (array<mat4x4f>), probe_rsm (array<RsmTexel>), probe_pairs (array<vec4u>: real-only layer,
+// virtual-only layer, light, the light's angular radius as f32 bits) and probe_info (vec4u:
+// lights, map side, shadow resolution).
+
+// Where `p` falls in the map of `layer`: its texel, or -1 outside the map.
+fn probe_map_texel(layer: u32, p: vec3f) -> i32 {
+    let res = probe_info.y;
+    let clip = probe_clip_from_world[layer] * vec4f(p, 1.0);
+    let ndc = clip.xy / clip.w;
+    if (any(abs(ndc) >= vec2f(1.0))) { return -1; }
+    let st = min(vec2u(vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * f32(res)), vec2u(res - 1u));
+    return i32((layer * res + st.y) * res + st.x);
+}
+
+// Whether the map texel `texel` holds a surface nearer to the light (along `l`, toward it)
+// than `p`, beyond `bias`.
+fn probe_map_blocked(texel: i32, p: vec3f, l: vec3f, bias: f32) -> bool {
+    if (texel < 0) { return false; }
+    let t = probe_rsm[texel];
+    return t.position.w > 0.5 && dot(t.position.xyz - p, l) > bias;
+}
+
+// Σw·V of both solutions and Σw, w = E_k·⟨n, l_k⟩₊·s_k per channel, over the probe's lights:
+// V_r = 0 where a real surface lies toward the light, V_rv also where a virtual one does.
+// s_k = 1 with `sharp_below` = 0; else how sharp a shadow light k casts, 1 up to an angular
+// radius of `sharp_below`, 0 from twice that. `all_weight`: Σ E_k·⟨n, l_k⟩₊. `covered`:
+// whether every light that reaches the point has it inside its maps.
+struct ProbeMapVisibility {
+    visible_rv: vec3f,
+    visible_r: vec3f,
+    weight: vec3f,
+    all_weight: vec3f,
+    covered: bool,
+}
+
+fn probe_map_visibility(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapVisibility {
+    var out = ProbeMapVisibility(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), true);
+    for (var i = 0u; i < probe_info.x; i++) {
+        let pair = probe_pairs[i];
+        let light = probe_lights[pair.z];
+        let l = -light.direction_real.xyz;
+        let e = light.intensity.rgb * max(dot(n, l), 0.0);
+        out.all_weight += e;
+        var sharpness = 1.0;
+        if (sharp_below > 0.0) { sharpness = saturate(2.0 - bitcast<f32>(pair.w) / sharp_below); }
+        let w = e * sharpness;
+        if (all(w == vec3f(0.0))) { continue; }
+        // Two texels of the map (its side is the light's texel size × resolution).
+        let bias = 2.0 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
+        let q = p + n * bias;
+        let real = probe_map_texel(pair.x, q);
+        let v_r = select(1.0, 0.0, probe_map_blocked(real, q, l, bias));
+        let v_v = select(1.0, 0.0, probe_map_blocked(probe_map_texel(pair.y, q), q, l, bias));
+        out.visible_r += w * v_r;
+        out.visible_rv += w * v_r * v_v;
+        out.weight += w;
+        out.covered = out.covered && real >= 0;
+    }
+    return out;
+}
