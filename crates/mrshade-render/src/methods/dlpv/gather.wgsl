@@ -4,13 +4,11 @@
 // irradiance of a cell's intensity over its cross-section. Virtual pixels take V_ρ's light
 // (Eq. 5.15); real ones the real scene's bounce light of V_μ in both L_rv and L_r (the
 // model of the photo the α-scaled composite divides by) and the signed change of V_Δ in
-// L_rv (Eq. 5.16), so that L_rv − L_r is the change. The probe is seen through the maps of
-// its directional lights (spec §2.3's suggested upgrade of ambient occlusion to directional
+// L_rv (Eq. 5.16), so that L_rv − L_r is the change. On real pixels the probe's
+// shadow is in the direct change; virtual ones see the probe through the maps of its
+// directional lights (spec §2.3's suggested upgrade of ambient occlusion to directional
 // occlusion): the visibility sums Σw·V over the lights, w = E_k·⟨n, l_k⟩₊ per channel, V = 0
-// where a surface lies toward the light. Virtual pixels take real and virtual surfaces (the
-// desk below, the object itself); real ones the real scene's alone, in both solutions (a
-// room's walls hide the probe from its floor), the virtual content's shadow being in the
-// direct change.
+// where a real or virtual surface lies toward the light (the desk below, the object itself).
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: DlpvParams;
@@ -85,12 +83,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (is_real(flags)) {
         let model = diffuse * max(volume_irradiance(VOLUME_MU, s.position, s.normal), vec3f(0.0));
         let change = diffuse * volume_irradiance(VOLUME_DELTA, s.position, s.normal);
-        let v = probe_map_visibility(s.position, s.normal, 0.0);
-        var real_visible = vec3f(1.0);
-        if (v.covered && all(v.weight > vec3f(0.0))) {
-            real_visible = v.visible_r / v.weight;
-        }
-        store_indirect(pixel, model + change, model, real_visible, real_visible, vec3f(1.0));
+        store_indirect(pixel, model + change, model, vec3f(1.0), vec3f(1.0), vec3f(1.0));
         return;
     }
     let light = diffuse * max(volume_irradiance(VOLUME_RHO, s.position, s.normal), vec3f(0.0));
