@@ -1,6 +1,6 @@
 //! Differential instant radiosity settings (Knecht §2.7–§2.10; parameter table §2.15).
 
-use super::check;
+use super::{check, check_power_of_two};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -195,11 +195,7 @@ impl DirSettings {
             "dir.vpl_count",
             format!("must be between interleave² ({}) and 4096, got {}", i * i, self.vpl_count),
         )?;
-        check(
-            self.ism_resolution.is_power_of_two() && (16..=512).contains(&self.ism_resolution),
-            "dir.ism_resolution",
-            format!("must be a power of two between 16 and 512, got {}", self.ism_resolution),
-        )?;
+        check_power_of_two(self.ism_resolution, 16, 512, "dir.ism_resolution", "")?;
         check(
             (16..=65536).contains(&self.points_per_vpl),
             "dir.points_per_vpl",
@@ -217,11 +213,7 @@ impl DirSettings {
                 (points * 32) >> 20
             ),
         )?;
-        check(
-            self.rsm_resolution.is_power_of_two() && (4..=2048).contains(&self.rsm_resolution),
-            "dir.rsm_resolution",
-            format!("must be a power of two between 4 and 2048, got {}", self.rsm_resolution),
-        )?;
+        check_power_of_two(self.rsm_resolution, 4, 2048, "dir.rsm_resolution", "")?;
         for (name, samples) in [
             ("dir.near_field_samples", self.near_field_samples),
             ("dir.near_field_bounce_samples", self.near_field_bounce_samples),

@@ -3,7 +3,7 @@
 //! second-order SH into a volume around the virtual content and propagated, plus a regular
 //! volume for the virtual objects' own indirect light.
 
-use super::check;
+use super::{check, check_power_of_two, check_probe_lights};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the `dlpv` method. Defaults are the thesis's (spec §2.12.7).
@@ -56,11 +56,7 @@ impl Default for DlpvSettings {
 impl DlpvSettings {
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
-        check(
-            self.resolution.is_power_of_two() && (8..=128).contains(&self.resolution),
-            "dlpv.resolution",
-            format!("must be a power of two between 8 and 128 cells, got {}", self.resolution),
-        )?;
+        check_power_of_two(self.resolution, 8, 128, "dlpv.resolution", " cells")?;
         check(
             self.extent.is_finite() && (1.0..=64.0).contains(&self.extent),
             "dlpv.extent",
@@ -76,21 +72,9 @@ impl DlpvSettings {
             "dlpv.direct_steps",
             format!("must be between 0 and 256, got {}", self.direct_steps),
         )?;
-        check(
-            self.rsm_resolution.is_power_of_two() && (32..=2048).contains(&self.rsm_resolution),
-            "dlpv.rsm_resolution",
-            format!("must be a power of two between 32 and 2048 texels, got {}", self.rsm_resolution),
-        )?;
-        check(
-            self.probe_rsm_resolution.is_power_of_two() && (32..=2048).contains(&self.probe_rsm_resolution),
-            "dlpv.probe_rsm_resolution",
-            format!("must be a power of two between 32 and 2048 texels, got {}", self.probe_rsm_resolution),
-        )?;
-        check(
-            self.probe_lights == 0 || (self.probe_lights.is_power_of_two() && self.probe_lights <= 64),
-            "dlpv.probe_lights",
-            format!("must be 0 or a power of two up to 64, got {}", self.probe_lights),
-        )
+        check_power_of_two(self.rsm_resolution, 32, 2048, "dlpv.rsm_resolution", " texels")?;
+        check_power_of_two(self.probe_rsm_resolution, 32, 2048, "dlpv.probe_rsm_resolution", " texels")?;
+        check_probe_lights(self.probe_lights, "dlpv.probe_lights")
     }
 }
 

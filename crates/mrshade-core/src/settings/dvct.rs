@@ -2,7 +2,7 @@
 //! scene voxelised around the virtual content, its first bounce injected per voxel, 3D mipmaps
 //! and per-pixel cone tracing.
 
-use super::check;
+use super::{check, check_power_of_two, check_probe_lights};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the `dvct` method.
@@ -66,11 +66,7 @@ impl DvctSettings {
 
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
-        check(
-            self.resolution.is_power_of_two() && (16..=512).contains(&self.resolution),
-            "dvct.resolution",
-            format!("must be a power of two between 16 and 512 voxels, got {}", self.resolution),
-        )?;
+        check_power_of_two(self.resolution, 16, 512, "dvct.resolution", " voxels")?;
         check(
             self.extent.is_finite() && (1.0..=64.0).contains(&self.extent),
             "dvct.extent",
@@ -87,16 +83,8 @@ impl DvctSettings {
             format!("must be between 0.05 and 2, got {}", self.diffuse_aperture),
         )?;
         check((1..=2).contains(&self.bounces), "dvct.bounces", format!("must be 1 or 2, got {}", self.bounces))?;
-        check(
-            self.probe_lights == 0 || (self.probe_lights.is_power_of_two() && self.probe_lights <= 64),
-            "dvct.probe_lights",
-            format!("must be 0 or a power of two up to 64, got {}", self.probe_lights),
-        )?;
-        check(
-            self.probe_map_resolution.is_power_of_two() && (32..=2048).contains(&self.probe_map_resolution),
-            "dvct.probe_map_resolution",
-            format!("must be a power of two between 32 and 2048 texels, got {}", self.probe_map_resolution),
-        )
+        check_probe_lights(self.probe_lights, "dvct.probe_lights")?;
+        check_power_of_two(self.probe_map_resolution, 32, 2048, "dvct.probe_map_resolution", " texels")
     }
 }
 

@@ -155,6 +155,25 @@ pub(crate) fn check(ok: bool, field: &str, what: impl std::fmt::Display) -> Resu
     if ok { Ok(()) } else { Err(format!("`{field}` {what}")) }
 }
 
+/// Checks that `value` is a power of two in `lo..=hi` (`unit`: what it counts, e.g. " texels",
+/// or "").
+pub(crate) fn check_power_of_two(value: u32, lo: u32, hi: u32, field: &str, unit: &str) -> Result<(), String> {
+    check(
+        value.is_power_of_two() && (lo..=hi).contains(&value),
+        field,
+        format!("must be a power of two between {lo} and {hi}{unit}, got {value}"),
+    )
+}
+
+/// Checks a count of directional lights the probe is split into: 0 or a power of two up to 64.
+pub(crate) fn check_probe_lights(value: u32, field: &str) -> Result<(), String> {
+    check(
+        value == 0 || (value.is_power_of_two() && value <= 64),
+        field,
+        format!("must be 0 or a power of two up to 64, got {value}"),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

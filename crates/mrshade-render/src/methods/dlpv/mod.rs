@@ -14,7 +14,7 @@
 mod lights;
 
 use super::around::place;
-use super::probe_maps::{ProbeSet, bounding_radius, layer_pairs};
+use super::probe_maps::{ProbeMaps, ProbeSet, bounding_radius, layer_pairs};
 use super::rsm::{self, RsmPass};
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;
@@ -310,8 +310,8 @@ impl DlpvMethod {
         );
         // 0: the three volumes; 1–4: the probe's lights, their layers, maps and pairs; 5: the
         // probe lights' counts.
-        let mut entries: Vec<_> = (0..5).map(|b| bind::storage(b, cs)).collect();
-        entries.push(bind::uniform(5, cs));
+        let mut entries = vec![bind::storage(0, cs)];
+        entries.extend(ProbeMaps::layout_entries(1));
         let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
         // The probe's lights for the virtual pixels' visibility (none: one unused word each).
         let probe_set = sets.iter().find_map(|s| match &s.layers_of {

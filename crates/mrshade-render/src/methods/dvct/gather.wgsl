@@ -81,9 +81,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         let cones_rv = select(vec3f(1.0), e.env_rv / e.env, e.env > vec3f(0.0));
         let cones_r = select(vec3f(1.0), e.env_r / e.env, e.env > vec3f(0.0));
         env.env_r = units * mix(cones_r, maps.visible_r / maps.weight, sharp);
-        env.env_rv = units * mix(cones_rv, maps.visible_rv / maps.weight, sharp);
         if (is_real(flags)) {
+            // The virtual content's shadow in it stays the cones' (32 hard shadows band where
+            // a broad probe's is soft).
             env.env_rv = env.env_r * select(vec3f(1.0), cones_rv / cones_r, cones_r > vec3f(0.0));
+        } else {
+            env.env_rv = units * mix(cones_rv, maps.visible_rv / maps.weight, sharp);
         }
         env.env = units;
     }
