@@ -1,11 +1,17 @@
 //! Known answers of the `dlpv` method's passes (Franke §2.12): a propagation step conserves
-//! flux in free space and moves it along its lobe; the split injection cancels where the
-//! virtual object changes nothing.
+//! flux in free space and moves it along its lobe; injection into the cell a VPL lies in
+//! (the thesis's) and trilinear injection put the same light at the same place.
+
+mod common;
 
 use bytemuck::cast_slice;
+use common::Setup;
+use glam::Vec3;
 use glam::{UVec4, Vec4};
 use mrshade_gpu::{bind, readback::read_buffer};
-use mrshade_render::methods::dlpv::{DlpvParams, PROPAGATE_SHADER, propagate_layout};
+use mrshade_render::Renderer;
+use mrshade_render::methods::dlpv::{DlpvMethod, DlpvParams, PROPAGATE_SHADER, propagate_layout};
+use serde_json::json;
 use wgpu::util::DeviceExt;
 
 const RES: u32 = 8;
@@ -124,4 +130,62 @@ fn a_lobe_propagates_along_its_direction() {
     let behind = stepped[index(3, 4, 4)];
     assert!(ahead.x > 2.0 * behind.x.abs(), "{ahead} vs {behind}");
     assert!(ahead.w > 0.0, "x coefficient {ahead}");
+}
+
+/// After one frame of a real floor (wholly inside the volume) under a real spot with a virtual
+/// cube on it: per source
+/// (V_ρ's difference, the indirect change, the direct change, V_μ), the red band-0 light
+/// injected (fixed-point units), the number of cells it is in, and its centroid (in cells).
+fn injected_red(splat: &str) -> Vec<(f64, usize, Vec3)> {
+    let mut s = Setup::top_down(32);
+    s.top_toml = "method = \"dlpv\"\n".into();
+    s.extra_toml += &format!("[dlpv]\nsplat = \"{splat}\"\nrsm_resolution = 128\nextent = 4.0\n");
+    s.plane(0.3, 0.0, 0.6, true).cube([0.05, 0.1, 0.0], 0.1, false).light(
+        json!({"type": "spot", "intensity": 3.0, "spot": {"innerConeAngle": 0.4, "outerConeAngle": 0.8}}),
+        [0.3, 0.9, 0.1],
+        true,
+    );
+    let (_dir, session) = s.session();
+    let ctx = mrshade_testkit::gpu();
+    let mut renderer = Renderer::new(&ctx, &session).unwrap();
+    renderer.render_frames(&ctx, 1, |_| {}).unwrap();
+    let method: &DlpvMethod = renderer.method_as().unwrap();
+    let res = method.params().info.x as usize;
+    let cells = res * res * res;
+    let words = read_buffer(&ctx, &method.injected).unwrap();
+    let words = cast_slice::<u8, i32>(&words);
+    (0..4)
+        .map(|source| {
+            let red = &words[source * 3 * cells * 4..][..cells * 4];
+            let (mut total, mut count, mut moment) = (0.0f64, 0, Vec3::ZERO);
+            for cell in 0..cells {
+                let c0 = red[cell * 4] as f64;
+                if c0 != 0.0 {
+                    let at = Vec3::new((cell % res) as f32, ((cell / res) % res) as f32, (cell / (res * res)) as f32);
+                    total += c0;
+                    count += 1;
+                    moment += (at + 0.5) * c0 as f32;
+                }
+            }
+            (total, count, moment / total.max(1.0) as f32)
+        })
+        .collect()
+}
+
+#[test]
+fn injecting_into_a_cell_and_trilinearly_put_the_same_light_at_the_same_place() {
+    let cell = injected_red("cell");
+    let trilinear = injected_red("trilinear");
+    // Each VPL rounds once (cell) or eight times (trilinear): the same light, also where the
+    // cube's VPLs and the desk's it hides nearly cancel (the indirect change).
+    for (source, name) in [(1, "indirect change"), (3, "V_μ")] {
+        let (a, b) = (cell[source].0, trilinear[source].0);
+        assert!(b.abs() > 1e4, "{name}: nothing injected ({b})");
+        assert!((a - b).abs() <= 1e-3 * b.abs(), "{name}: {a} against {b}");
+    }
+    // V_μ (all positive) in fewer cells (each VPL in one, not eight) about the same centroid:
+    // a VPL's cell centre is on average where the trilinear weights put it.
+    let ((_, in_cells, at_a), (_, in_trilinear, at_b)) = (cell[3], trilinear[3]);
+    assert!(in_cells < in_trilinear, "{in_cells} cells against {in_trilinear}");
+    assert!(at_a.distance(at_b) < 0.25, "centroid {at_a} against {at_b}");
 }

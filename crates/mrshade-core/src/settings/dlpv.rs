@@ -6,6 +6,21 @@
 use super::{check, check_power_of_two, check_probe_lights};
 use serde::{Deserialize, Serialize};
 
+/// How a VPL is added to the volume.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DlpvSplat {
+    /// Into the one cell it lies in, after the half-cell shift along its lobe (spec §2.12.2:
+    /// "shift the VPL by half the size of a voxel along its normal before determining the
+    /// voxel", [KD10]); the default, as in the thesis.
+    #[default]
+    #[serde(rename = "cell")]
+    Cell,
+    /// Shared among the eight cells around it by trilinear weights: smoother as a VPL
+    /// crosses cells, eight times the atomic additions.
+    #[serde(rename = "trilinear")]
+    Trilinear,
+}
+
 /// Settings of the `dlpv` method. Defaults are the thesis's (spec §2.12.7).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -37,6 +52,8 @@ pub struct DlpvSettings {
     /// a hemispherical image"; not in the thesis's setups). Default 32 (desk-bunny region
     /// FLIP 0.353 / 0.303 / 0.311 with 8 / 32 / 64).
     pub probe_lights: u32,
+    /// How each VPL enters the volume: `cell` (default, the thesis's) or `trilinear`.
+    pub splat: DlpvSplat,
 }
 
 impl Default for DlpvSettings {
@@ -49,6 +66,7 @@ impl Default for DlpvSettings {
             rsm_resolution: 512,
             probe_rsm_resolution: 128,
             probe_lights: 32,
+            splat: DlpvSplat::Cell,
         }
     }
 }

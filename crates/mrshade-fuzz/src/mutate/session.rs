@@ -48,6 +48,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.rsm_resolution", Kind::Number),
     ("dlpv.probe_lights", Kind::Number),
     ("dlpv.probe_rsm_resolution", Kind::Number),
+    ("dlpv.splat", Kind::Choice(&["cell", "trilinear", "nearest"])),
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),

@@ -15,8 +15,9 @@
 //   light's direction, half a cell toward the light. The positive half, light on the virtual
 //   surface, is left out: propagated along the light it would relight the shadow it casts,
 //   and virtual pixels are shaded directly.
-// Each is splatted trilinearly, half a cell along its lobe (the thesis's guard against
-// self-illumination), as fixed-point atomics (WGSL has no float atomics).
+// Each is shifted half a cell along its lobe (the thesis's guard against self-illumination)
+// and added to the cell it then lies in (`dlpv.splat = "cell"`, the thesis's) or to the
+// eight around it by trilinear weights, as fixed-point atomics (WGSL has no float atomics).
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
@@ -28,6 +29,11 @@
 @group(0) @binding(5) var<uniform> rsm_size: vec4u;
 
 fn splat(source: u32, p: vec3f, coefficients: array<vec4f, 3>) {
+    if (params.info.w == SPLAT_CELL) {
+        let c = vec3i(floor(cell_coords(p)));
+        if (cell_inside(c)) { add_to_cell(source, cell_index(c), coefficients, params.scale.x); }
+        return;
+    }
     let x = cell_coords(p) - 0.5;
     let base = vec3i(floor(x));
     let f = x - floor(x);
@@ -38,14 +44,18 @@ fn splat(source: u32, p: vec3f, coefficients: array<vec4f, 3>) {
         let w3 = select(1.0 - f, f, vec3<bool>(o == vec3u(1u)));
         let w = w3.x * w3.y * w3.z * params.scale.x;
         if (w <= 0.0) { continue; }
-        let cell = cell_index(c);
-        for (var ch = 0u; ch < 3u; ch++) {
-            let at = ((source * 3u + ch) * cells() + cell) * 4u;
-            let v = coefficients[ch] * w;
-            for (var k = 0u; k < 4u; k++) {
-                let q = i32(round(v[k]));
-                if (q != 0) { atomicAdd(&injected[at + k], q); }
-            }
+        add_to_cell(source, cell_index(c), coefficients, w);
+    }
+}
+
+// Adds `coefficients` times `w` (fixed-point units) to `cell` of source `source`.
+fn add_to_cell(source: u32, cell: u32, coefficients: array<vec4f, 3>, w: f32) {
+    for (var ch = 0u; ch < 3u; ch++) {
+        let at = ((source * 3u + ch) * cells() + cell) * 4u;
+        let v = coefficients[ch] * w;
+        for (var k = 0u; k < 4u; k++) {
+            let q = i32(round(v[k]));
+            if (q != 0) { atomicAdd(&injected[at + k], q); }
         }
     }
 }

@@ -25,7 +25,7 @@ use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use lights::{LayersOf, LightSet, power_bound};
-use mrshade_core::settings::{RenderSettings, ShadowSettings};
+use mrshade_core::settings::{DlpvSplat, RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
@@ -37,7 +37,8 @@ use wgpu::util::DeviceExt;
 pub struct DlpvParams {
     /// xyz: world position of the lower corner; w: cell side (m).
     pub origin: Vec4,
-    /// Cells per side, cells in all, propagation step (0: seeding, injection), unused.
+    /// Cells per side, cells in all, propagation step (0: seeding, injection), splat (0: into
+    /// the cell, 1: trilinear).
     pub info: UVec4,
     /// Fixed-point units per watt, unused…
     pub scale: Vec4,
@@ -69,7 +70,9 @@ pub struct DlpvMethod {
     scene_box: Option<(Vec3, Vec3)>,
     shadows: ShadowSettings,
     sets: Vec<LightSet>,
-    injected: wgpu::Buffer,
+    /// Per source, channel and cell: the injected SH coefficients in fixed point (`i32`,
+    /// `DlpvParams::scale` units).
+    pub injected: wgpu::Buffer,
     inject: wgpu::ComputePipeline,
     seed: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
@@ -149,6 +152,10 @@ impl DlpvMethod {
         let settings = &session.settings.dlpv;
         let res = settings.resolution;
         let cells = res * res * res;
+        let splat = match settings.splat {
+            DlpvSplat::Cell => 0,
+            DlpvSplat::Trilinear => 1,
+        };
         let cs = wgpu::ShaderStages::COMPUTE;
         let scene_box = session.scene.bounds();
         let (origin, side) = place(scene.geometry.virtual_box(), scene_box, settings.extent);
@@ -165,7 +172,7 @@ impl DlpvMethod {
             power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_lights, bounding_radius(Some(cube)));
         let params = DlpvParams {
             origin: origin.extend(side / res as f32),
-            info: UVec4::new(res, cells, 0, 0),
+            info: UVec4::new(res, cells, 0, splat),
             scale: Vec4::new(FIXED_POINT_RANGE / bound.max(1e-12), 0.0, 0.0, 0.0),
             steps: {
                 let mut steps = [0; SOURCES as usize];
@@ -179,7 +186,7 @@ impl DlpvMethod {
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/injected"),
             size: SOURCES as u64 * cells as u64 * CELL_BYTES,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let uniform = |label: &str, p: &DlpvParams| {
@@ -194,7 +201,7 @@ impl DlpvMethod {
             .map(|step| {
                 uniform(
                     &format!("dlpv/params_step{step}"),
-                    &DlpvParams { info: UVec4::new(res, cells, step, 0), ..params },
+                    &DlpvParams { info: UVec4::new(res, cells, step, splat), ..params },
                 )
             })
             .collect();

@@ -6,13 +6,17 @@ struct DlpvParams {
     // xyz: world position of the lower corner; w: cell side h (m)
     origin: vec4f,
     // cells per side, cells in all, this propagation dispatch's step (from 1; 0 for seeding
-    // and injection), unused
+    // and injection), how VPLs are splatted (SPLAT_*)
     info: vec4u,
     // fixed-point units per watt of injected intensity coefficients, unused…
     scale: vec4f,
     // propagation steps per source (SOURCE_*)
     steps: vec4u,
 }
+
+// `info.w`: a VPL goes into the cell it lies in, or trilinearly into the eight around it.
+const SPLAT_CELL: u32 = 0u;
+const SPLAT_TRILINEAR: u32 = 1u;
 
 // Sources of injection: V_ρ's VPLs, the indirect change, the direct change, V_μ's VPLs.
 const SOURCE_RHO: u32 = 0u;
