@@ -94,9 +94,8 @@ impl ProbeSet {
     }
 }
 
-/// Pairs of a set's layers: (real-only layer, virtual-only layer, light, 1 if the light's
-/// direct change is injected), face by face.
-pub fn layer_pairs(layers: &[ShadowLayer], direct: bool) -> Vec<UVec4> {
+/// Pairs of a set's layers: (real-only layer, virtual-only layer, light, 0), face by face.
+pub fn layer_pairs(layers: &[ShadowLayer]) -> Vec<UVec4> {
     let real = layers.iter().enumerate().filter(|(_, l)| l.casters == Realness::Real);
     real.map(|(i, l)| {
         let face = layers[..i].iter().filter(|o| o.light == l.light && o.casters == Realness::Real).count();
@@ -107,7 +106,7 @@ pub fn layer_pairs(layers: &[ShadowLayer], direct: bool) -> Vec<UVec4> {
             .nth(face)
             .map(|(j, _)| j)
             .expect("every real layer has a virtual twin");
-        UVec4::new(i as u32, virtual_layer as u32, l.light, direct as u32)
+        UVec4::new(i as u32, virtual_layer as u32, l.light, 0)
     })
     .collect()
 }
@@ -128,6 +127,10 @@ pub struct ProbeMaps {
     info: wgpu::Buffer,
     /// Stands in for the lights, matrices and texels when there are none.
     unused: wgpu::Buffer,
+    /// Number of pairs (one per light).
+    count: u32,
+    /// Side of the maps.
+    resolution: u32,
 }
 
 impl ProbeMaps {
@@ -151,7 +154,7 @@ impl ProbeMaps {
         let drawn = (!lights.is_empty()).then(|| {
             let (set, layers) = ProbeSet::new(device, label, lights, cube, scene_box, shadows);
             let rsm = RsmPass::new(ctx, rasterizer, scene, &set.buffer, &layers, resolution, shadows.resolution, false);
-            let pairs = layer_pairs(&layers, false);
+            let pairs = layer_pairs(&layers);
             let pairs =
                 pairs.into_iter().map(|p| UVec4 { w: spreads[p.z as usize].to_bits(), ..p }).collect::<Vec<_>>();
             (set, rsm, pairs)
@@ -170,7 +173,14 @@ impl ProbeMaps {
         let info = UVec4::new(pairs.len() as u32, resolution, shadows.resolution, 0);
         let info = init("probe_info", bytemuck::bytes_of(&info), wgpu::BufferUsages::UNIFORM);
         let unused = init("no_probe_lights", &[0; 256], wgpu::BufferUsages::STORAGE);
-        Self { drawn: drawn.map(|(set, rsm, _)| (set, rsm)), pairs: pairs_buffer, info, unused }
+        Self {
+            drawn: drawn.map(|(set, rsm, _)| (set, rsm)),
+            pairs: pairs_buffer,
+            info,
+            unused,
+            count: pairs.len() as u32,
+            resolution,
+        }
     }
 
     /// Moves the maps to cover `cube` (drawn again by the next `record`).
@@ -192,6 +202,13 @@ impl ProbeMaps {
         if let Some((_, rsm)) = &self.drawn {
             rsm.record_maps(rec, rasterizer, false);
         }
+    }
+
+    /// The lights, the maps' texels and the pairs (`dlpv` injects the texels), and how many
+    /// pairs of maps of which side; `None` without lights.
+    pub fn maps(&self) -> Option<([&wgpu::Buffer; 3], u32, u32)> {
+        let (set, rsm) = self.drawn.as_ref()?;
+        Some(([&set.buffer, &rsm.texels, &self.pairs], self.count, self.resolution))
     }
 
     /// The layout entries of `resources()`, bindings `first`… (compute).

@@ -21,11 +21,12 @@
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
-// Per pair: real-only layer, virtual-only layer, light, 1 if its direct change is injected.
+// Per pair: real-only layer, virtual-only layer, light, unused.
 @group(0) @binding(2) var<storage, read> pairs: array<vec4u>;
 @group(0) @binding(3) var<storage, read> lights: array<Light>;
 // Per source, per channel, per cell: four coefficients.
 @group(0) @binding(4) var<storage, read_write> injected: array<atomic<i32>>;
+// The maps' side, pairs, 1 if the set's direct change is injected (the probe's lights).
 @group(0) @binding(5) var<uniform> rsm_size: vec4u;
 
 fn splat(source: u32, p: vec3f, coefficients: array<vec4f, 3>) {
@@ -113,7 +114,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let hidden = array<vec4f, 3>(-r[0], -r[1], -r[2]);
     splat(SOURCE_INDIRECT, vpl_position(real), hidden);
     splat(SOURCE_RHO, vpl_position(real), hidden);
-    if (pair.w == 1u) {
+    if (rsm_size.z == 1u) {
         // Lobe along the light (a direction, as SH of a delta), scaled so that the query on
         // this surface returns the irradiance taken away (the L1 projection of a delta
         // answers (1/4 + cos/2) of it).

@@ -1,26 +1,15 @@
 //! The lights whose maps `dlpv` injects: the scene's own, and the directional lights the
 //! probe is split into (`probe_maps`), and the power bound that sizes the fixed point.
 
-use super::super::probe_maps::ProbeSet;
-use super::super::rsm::RsmPass;
 use mrshade_scene::{Light, LightKind};
 
-/// One light set's maps and how their layers pair up.
-pub(super) struct LightSet {
-    pub(super) rsm: RsmPass,
-    pub(super) inject_group: wgpu::BindGroup,
+/// One injection dispatch: a set of lights' pairs of maps.
+pub(super) struct InjectSet {
+    pub(super) group: wgpu::BindGroup,
+    /// Pairs of maps (real-only, virtual-only).
     pub(super) pairs: u32,
-    pub(super) pairs_buffer: wgpu::Buffer,
-    /// The set's lights (the probe's follow the volume; the scene's are the scene's).
-    pub(super) layers_of: LayersOf,
-}
-
-/// Where a set's layers come from.
-pub(super) enum LayersOf {
-    /// The scene's lights: the frame's shadow layers.
-    Scene,
-    /// Directional lights split from the probe, their maps around the volume.
-    Probe(ProbeSet),
+    /// Side of the maps.
+    pub(super) resolution: u32,
 }
 
 /// Upper bound of the power all of `lights`' map texels receive (W), for the fixed point:

@@ -14,17 +14,17 @@
 mod lights;
 
 use super::around::place;
-use super::probe_maps::{ProbeMaps, ProbeSet, bounding_radius, layer_pairs};
+use super::probe_maps::{ProbeMaps, bounding_radius, layer_pairs};
 use super::rsm::{self, RsmPass};
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::raster::Rasterizer;
-use crate::scene_gpu::{GpuProbe, ShadowLayer};
+use crate::scene_gpu::GpuProbe;
 use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
-use lights::{LayersOf, LightSet, power_bound};
+use lights::{InjectSet, power_bound};
 use mrshade_core::settings::{DlpvSplat, RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
@@ -69,7 +69,12 @@ pub struct DlpvMethod {
     extent: f32,
     scene_box: Option<(Vec3, Vec3)>,
     shadows: ShadowSettings,
-    sets: Vec<LightSet>,
+    /// The scene's lights' maps (their layers are the frame's shadow layers).
+    scene_maps: Option<RsmPass>,
+    /// The directional lights the probe is split into, their maps around the volume.
+    probe: ProbeMaps,
+    /// The injection's dispatches: the scene's lights, then the probe's.
+    sets: Vec<InjectSet>,
     /// Per source, channel and cell: the injected SH coefficients in fixed point (`i32`,
     /// `DlpvParams::scale` units).
     pub injected: wgpu::Buffer,
@@ -163,13 +168,14 @@ impl DlpvMethod {
 
         // The light sets: the scene's lights, and the probe's split into directional ones.
         let probe_lights = match &session.environment {
-            Some(env) => crate::ibl::probe_lights(env, settings.probe_lights),
+            Some(env) => crate::ibl::probe_lights_with_spread(env, settings.probe_lights),
             None => Vec::new(),
         };
         let shadows = &session.settings.shadows;
         let scene_radius = bounding_radius(scene_box);
+        let probe_only: Vec<_> = probe_lights.iter().map(|(light, _)| light.clone()).collect();
         let bound =
-            power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_lights, bounding_radius(Some(cube)));
+            power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_only, bounding_radius(Some(cube)));
         let params = DlpvParams {
             origin: origin.extend(side / res as f32),
             info: UVec4::new(res, cells, 0, splat),
@@ -219,48 +225,60 @@ impl DlpvMethod {
             ],
         );
         let inject = compute_pipeline(device, "dlpv/inject", INJECT_SHADER, &[&inject_layout]);
-        let set = |label: &str, lights: &wgpu::Buffer, layers: &[ShadowLayer], direct: bool, layers_of: LayersOf| {
-            let resolution = match layers_of {
-                LayersOf::Scene => settings.rsm_resolution,
-                LayersOf::Probe(_) => settings.probe_rsm_resolution,
+        // One dispatch per set: its maps' texels, pairs and lights, and (resolution, pairs, 1
+        // if the set's direct change is injected: the probe's shadow; punctual lights' comes
+        // from the shadow maps).
+        let inject_set =
+            |label: &str, [lights, texels, pairs_buffer]: [&wgpu::Buffer; 3], pairs, resolution, direct| {
+                let size = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&format!("dlpv/{label}_rsm_size")),
+                    contents: bytemuck::bytes_of(&UVec4::new(resolution, pairs, direct as u32, 0)),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let group = bind::group(
+                    device,
+                    &format!("dlpv/{label}_inject_group"),
+                    &inject_layout,
+                    &[
+                        step_params[0].as_entire_binding(),
+                        texels.as_entire_binding(),
+                        pairs_buffer.as_entire_binding(),
+                        lights.as_entire_binding(),
+                        injected.as_entire_binding(),
+                        size.as_entire_binding(),
+                    ],
+                );
+                InjectSet { group, pairs, resolution }
             };
-            let rsm = RsmPass::new(ctx, rasterizer, scene, lights, layers, resolution, shadows.resolution, false);
-            let pairs = layer_pairs(layers, direct);
-            let mut pair_words = pairs.clone();
-            pair_words.resize(pairs.len().max(1), UVec4::ZERO);
+        let mut sets = Vec::new();
+        let scene_maps = (!scene.shadow_layers.is_empty()).then(|| {
+            let layers = &scene.shadow_layers;
+            let resolution = settings.rsm_resolution;
+            let rsm =
+                RsmPass::new(ctx, rasterizer, scene, &scene.lights, layers, resolution, shadows.resolution, false);
+            let pairs = layer_pairs(layers);
             let pairs_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(&format!("dlpv/{label}_pairs")),
-                contents: bytemuck::cast_slice(&pair_words),
+                label: Some("dlpv/scene_lights_pairs"),
+                contents: bytemuck::cast_slice(&pairs),
                 usage: wgpu::BufferUsages::STORAGE,
             });
-            let size = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(&format!("dlpv/{label}_rsm_size")),
-                contents: bytemuck::bytes_of(&UVec4::new(resolution, pairs.len() as u32, 0, 0)),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let inject_group = bind::group(
-                device,
-                &format!("dlpv/{label}_inject_group"),
-                &inject_layout,
-                &[
-                    step_params[0].as_entire_binding(),
-                    rsm.texels.as_entire_binding(),
-                    pairs_buffer.as_entire_binding(),
-                    lights.as_entire_binding(),
-                    injected.as_entire_binding(),
-                    size.as_entire_binding(),
-                ],
-            );
-            LightSet { rsm, inject_group, pairs: pairs.len() as u32, pairs_buffer, layers_of }
-        };
-        let mut sets = Vec::new();
-        if !scene.shadow_layers.is_empty() {
-            sets.push(set("scene_lights", &scene.lights, &scene.shadow_layers, false, LayersOf::Scene));
-        }
-        if !probe_lights.is_empty() {
-            let (probe, layers) = ProbeSet::new(device, "dlpv", probe_lights, cube, scene_box, shadows);
-            let buffer = probe.buffer.clone();
-            sets.push(set("probe_lights", &buffer, &layers, true, LayersOf::Probe(probe)));
+            let buffers = [&scene.lights, &rsm.texels, &pairs_buffer];
+            sets.push(inject_set("scene_lights", buffers, pairs.len() as u32, resolution, false));
+            rsm
+        });
+        let probe = ProbeMaps::new(
+            ctx,
+            rasterizer,
+            scene,
+            "dlpv",
+            probe_lights,
+            settings.probe_rsm_resolution,
+            cube,
+            scene_box,
+            shadows,
+        );
+        if let Some((buffers, pairs, resolution)) = probe.maps() {
+            sets.push(inject_set("probe_lights", buffers, pairs, resolution, true));
         }
 
         // Seeding and propagation: every source's volume in scratch A and B, the sums of the
@@ -315,36 +333,13 @@ impl DlpvMethod {
             gbuffer,
             &scene.materials.buffer,
         );
-        // 0: the three volumes; 1–4: the probe's lights, their layers, maps and pairs; 5: the
-        // probe lights' counts.
+        // 0: the three volumes; 1–5: the probe's lights, their layers, maps, pairs and counts
+        // (for the virtual pixels' visibility).
         let mut entries = vec![bind::storage(0, cs)];
         entries.extend(ProbeMaps::layout_entries(1));
         let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
-        // The probe's lights for the virtual pixels' visibility (none: one unused word each).
-        let probe_set = sets.iter().find_map(|s| match &s.layers_of {
-            LayersOf::Probe(p) => Some((p, s)),
-            LayersOf::Scene => None,
-        });
-        let unused = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("dlpv/no_probe_lights"),
-            size: 256,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        let info =
-            UVec4::new(probe_set.map_or(0, |(_, s)| s.pairs), settings.probe_rsm_resolution, shadows.resolution, 0);
-        let probe_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("dlpv/probe_info"),
-            contents: bytemuck::bytes_of(&info),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let probe_resources = match probe_set {
-            Some((p, s)) => [&p.buffer, &p.clip_from_world, &s.rsm.texels, &s.pairs_buffer],
-            None => [&unused, &unused, &unused, &unused],
-        };
         let mut resources = vec![volumes.as_entire_binding()];
-        resources.extend(probe_resources.map(|b| b.as_entire_binding()));
-        resources.push(probe_info.as_entire_binding());
+        resources.extend(probe.resources());
         let volume_group = bind::group(device, "dlpv/volume_group", &volume_layout, &resources);
         let indirect = IndirectLight::new(device, "dlpv/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dlpv/indirect_layout", &IndirectLight::storage_entries());
@@ -367,6 +362,8 @@ impl DlpvMethod {
             extent: settings.extent,
             scene_box,
             shadows: *shadows,
+            scene_maps,
+            probe,
             sets,
             injected,
             inject,
@@ -399,12 +396,7 @@ impl DlpvMethod {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&self.params.origin));
         }
         let cube = (origin, origin + Vec3::splat(side));
-        for set in &mut self.sets {
-            if let LayersOf::Probe(probe) = &set.layers_of {
-                let layers = probe.follow(queue, cube, self.scene_box, &self.shadows);
-                set.rsm.set_layers(queue, &layers);
-            }
-        }
+        self.probe.follow(queue, cube, self.scene_box, &self.shadows);
     }
 }
 
@@ -416,10 +408,8 @@ impl LightTransport for DlpvMethod {
             self.stale = true;
         }
         if let Some(layers) = change.moved_light_layers {
-            for set in &mut self.sets {
-                if let LayersOf::Scene = set.layers_of {
-                    set.rsm.set_layers(queue, layers);
-                }
+            if let Some(rsm) = &mut self.scene_maps {
+                rsm.set_layers(queue, layers);
             }
             self.stale = true;
         }
@@ -427,17 +417,18 @@ impl LightTransport for DlpvMethod {
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         if std::mem::take(&mut self.stale) {
-            for set in &self.sets {
-                set.rsm.record_maps(rec, rasterizer, false);
+            if let Some(rsm) = &self.scene_maps {
+                rsm.record_maps(rec, rasterizer, false);
             }
+            self.probe.record(rec, rasterizer);
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);
             let cells = self.params.info.y;
             rec.compute(Self::INJECT_LABEL, |pass| {
                 pass.set_pipeline(&self.inject);
                 for set in self.sets.iter().filter(|s| s.pairs > 0) {
-                    let groups = set.rsm.resolution.div_ceil(8);
-                    pass.set_bind_group(0, &set.inject_group, &[]);
+                    let groups = set.resolution.div_ceil(8);
+                    pass.set_bind_group(0, &set.group, &[]);
                     pass.dispatch_workgroups(groups, groups, set.pairs);
                 }
             });
