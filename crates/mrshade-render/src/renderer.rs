@@ -77,6 +77,18 @@ impl Renderer {
         Ok(renderer)
     }
 
+    /// A renderer for stills of `session` (frames of one view averaged into one image, as
+    /// `render_still` does): the session's settings for stills ([`RenderSettings::for_still`]).
+    ///
+    /// [`RenderSettings::for_still`]: mrshade_core::settings::RenderSettings::for_still
+    pub fn for_still(ctx: &GpuContext, session: &Session) -> Result<Self> {
+        let settings = session.settings.for_still();
+        if settings == session.settings {
+            return Self::new(ctx, session);
+        }
+        Self::new(ctx, &Session { settings, ..session.clone() })
+    }
+
     /// Moves instance `index` of the session's scene (takes effect at the next frame).
     pub fn set_instance_transform(&mut self, index: usize, world_from_object: glam::Mat4) {
         self.scene.geometry.set_transform(index, world_from_object);

@@ -11,6 +11,19 @@ use mrshade_render::methods::dir::{DirMethod, IsmDepths};
 use mrshade_render::scene_gpu::FOV_MARGIN;
 use serde_json::json;
 
+#[test]
+fn a_still_is_lit_by_every_vpl_at_every_pixel() {
+    // Frames interleave 4 × 4 (the thesis's); a still renderer takes `dir.still_interleave`.
+    let mut s = Setup::top_down(16);
+    s.top_toml = "method = \"dir\"\n".into();
+    s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
+    let (_dir, session) = s.session();
+    let ctx = mrshade_testkit::gpu();
+    let interleave = |r: &mrshade_render::Renderer| r.method_as::<DirMethod>().unwrap().interleave();
+    assert_eq!(interleave(&mrshade_render::Renderer::new(&ctx, &session).unwrap()), 4);
+    assert_eq!(interleave(&mrshade_render::Renderer::for_still(&ctx, &session).unwrap()), 1);
+}
+
 /// VPL flag bits (vpl.wgsl).
 const REAL: u32 = 1;
 const IR: u32 = 2;

@@ -126,6 +126,14 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// The settings of a still (many frames of one view averaged into one image): those of
+    /// frames, but `dir.interleave` is `dir.still_interleave`.
+    pub fn for_still(&self) -> Self {
+        let mut still = self.clone();
+        still.dir.interleave = self.dir.still_interleave;
+        still
+    }
+
     /// Whether the probe's light reaches the scene's diffuse surfaces through its mirrors and
     /// glass as photons (`caustics.environment_directions`): only with a method that shadows
     /// the probe (its shadows of transmissive casters are then opaque).

@@ -204,7 +204,7 @@ fn runs(session: &Session, method: &str, budgets: &[f64], ctx: Option<&GpuContex
     let ctx = ctx.context("no GPU context")?;
     let still = |frames: u32, budget_ms: Option<f64>| -> Result<Run> {
         let started = Instant::now();
-        let mut renderer = Renderer::new(ctx, session)?;
+        let mut renderer = Renderer::for_still(ctx, session)?;
         let bar = log.progress(frames as u64, crate::cmd::STILL_BAR)?;
         let (composite, gpu_ms) = renderer.render_still_timed(ctx, frames, |i| bar.set_position(i as u64))?;
         bar.finish_and_clear();

@@ -315,7 +315,7 @@ fn stills(
     for k in 0..plan.frames.len() {
         let data = FrameData::load(session, k)?;
         let started = Instant::now();
-        let mut renderer = Renderer::new(ctx, session)?;
+        let mut renderer = Renderer::for_still(ctx, session)?;
         let done = k as u64 * per_still as u64;
         let composite =
             renderer.render_still_of(ctx, per_still, &data.inputs(), |i| bar.set_position(done + i as u64))?;

@@ -47,7 +47,7 @@ pub fn demo(args: &DemoArgs, gpu: &GpuOptions, log: Log) -> Result<()> {
 fn render_session(session: &Session, out: &Path, aov_dir: Option<&Path>, gpu: &GpuOptions, log: Log) -> Result<()> {
     let ctx = open_gpu(gpu, log)?;
     let started = Instant::now();
-    let mut renderer = Renderer::new(&ctx, session)?;
+    let mut renderer = Renderer::for_still(&ctx, session)?;
     for w in &renderer.warnings {
         log.warn(w);
     }

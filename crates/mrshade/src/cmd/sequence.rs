@@ -96,7 +96,7 @@ fn render_one(session: &Session, args: &RenderArgs, ctx: &GpuContext, k: usize, 
     let out = args.output.as_deref().context("--frame needs -o OUT (an image file)")?;
     output::check_extension(out)?;
     let data = FrameData::load(session, k)?;
-    let mut renderer = Renderer::new(ctx, session)?;
+    let mut renderer = Renderer::for_still(ctx, session)?;
     for w in &renderer.warnings {
         log.warn(w);
     }

@@ -66,6 +66,13 @@ pub struct DirMethod {
     interleave: u32,
 }
 
+impl DirMethod {
+    /// The interleave factor I its passes were built with.
+    pub fn interleave(&self) -> u32 {
+        self.interleave
+    }
+}
+
 /// Builds every pass of the method (the registry's `build`).
 pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DirMethod::new(inputs))
