@@ -164,33 +164,38 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
     // Under a uniform probe, the share of a real floor's probe light that its cones let through
     // beside a virtual cube (the probe_visibility AOVs) is the share of its sky that the cube
     // leaves open. Wide cones whose samples' opacities compound hid the cube's share several
-    // times over (its side fills the same part of a cone sample after sample).
-    let mut s = Setup::top_down(48);
-    s.probe = Some([0.8, 0.8, 0.8]);
-    let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
-    s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
-    dvct(&mut s, 32);
-    let r = s.render();
-    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-    let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
-    let (mut error, mut count) = (0.0, 0);
-    for x in 0..48 {
-        let p = r.world_on_plane(x, 24, 0.0);
-        // Beside the cube, inside the volume (±0.2 m).
-        if p.x.abs() < half + 0.02 || p.x.abs() > 0.18 {
-            continue;
+    // times over (its side fills the same part of a cone sample after sample). Samples twice as
+    // far apart (`dvct.sample_spacing`), each compounding its opacity over the length it stands
+    // for, must hide the same share.
+    for spacing in [0.5, 1.0] {
+        let mut s = Setup::top_down(48);
+        s.probe = Some([0.8, 0.8, 0.8]);
+        let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
+        s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("sample_spacing = {spacing}\n");
+        let r = s.render();
+        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let (mut error, mut count) = (0.0, 0);
+        for x in 0..48 {
+            let p = r.world_on_plane(x, 24, 0.0);
+            // Beside the cube, inside the volume (±0.2 m).
+            if p.x.abs() < half + 0.02 || p.x.abs() > 0.18 {
+                continue;
+            }
+            let i = (24 * 48 + x) as usize;
+            assert!(visibility.r[i][0] > 0.999, "the floor alone hides none of its own sky");
+            let rendered = visibility.rv[i][0];
+            let cast = sky_left_by_cube(p, centre, half);
+            eprintln!("spacing {spacing}, x {:.3}: rendered {rendered:.3}, ray cast {cast:.3}", p.x);
+            error += (rendered - cast).abs();
+            count += 1;
         }
-        let i = (24 * 48 + x) as usize;
-        assert!(visibility.r[i][0] > 0.999, "the floor alone hides none of its own sky");
-        let rendered = visibility.rv[i][0];
-        let cast = sky_left_by_cube(p, centre, half);
-        eprintln!("x {:.3}: rendered {rendered:.3}, ray cast {cast:.3}", p.x);
-        error += (rendered - cast).abs();
-        count += 1;
+        assert!(count >= 6, "{count} pixels beside the cube");
+        let mean = error / count as f32;
+        assert!(mean < 0.06, "spacing {spacing}: the probe visibility is {mean:.3} away from ray casting on average");
     }
-    assert!(count >= 6, "{count} pixels beside the cube");
-    let mean = error / count as f32;
-    assert!(mean < 0.06, "the probe visibility is {mean:.3} away from ray casting on average");
 }
 
 #[test]

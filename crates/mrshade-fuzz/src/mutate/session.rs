@@ -41,6 +41,8 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.probe_lights", Kind::Number),
     ("dvct.probe_map_resolution", Kind::Number),
     ("dvct.diffuse_aperture", Kind::Number),
+    ("dvct.sample_spacing", Kind::Number),
+    ("dvct.bounce_spacing", Kind::Number),
     ("dvct.bounces", Kind::Number),
     ("dvct.half_resolution", Kind::Bool),
     ("dlpv.resolution", Kind::Number),

@@ -42,13 +42,13 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         // volume's centre): a room's walls gather inward whichever way their normals point.
         let toward = params.origin.xyz + 0.5 * volume_side() - s.position;
         s.normal = select(-s.normal, s.normal, dot(s.normal, toward) >= 0.0);
-        let e = gather_diffuse(s.position, s.normal);
+        let e = gather_diffuse(s.position, s.normal, bounce_spacing());
         rv += vec4f(s.albedo / PI * (e.rv + e.env_rv), 0.0);
         r += vec4f(s.albedo / PI * (e.r + e.env_r), 0.0);
     }
     if (virt != 0u) {
         let s = voxel_surface(virt - 1u, centre);
-        let e = gather_diffuse(s.position, s.normal);
+        let e = gather_diffuse(s.position, s.normal, bounce_spacing());
         rv = vec4f(first_rv.rgb + s.albedo / PI * (e.rv + e.env_rv), 1.0);
     }
     textureStore(out_rv, id, rv);

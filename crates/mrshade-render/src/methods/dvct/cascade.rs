@@ -45,7 +45,12 @@ impl Cascade {
         let params = VolumeParams {
             origin: origin.extend(side / res as f32),
             info: UVec4::new(res, levels(res), triangles, (settings.bounces == 1) as u32),
-            cone: Vec4::new(settings.diffuse_aperture, settings.trace_scale() as f32, 0.0, 0.0),
+            cone: Vec4::new(
+                settings.diffuse_aperture,
+                settings.trace_scale() as f32,
+                settings.sample_spacing,
+                settings.bounce_spacing,
+            ),
         };
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label}/params")),

@@ -85,27 +85,38 @@ fn sample_volume(
 
 // Side of the voxels a cone's samples read, per cone diameter. A sample blurs its level's
 // voxels (a box of side V) by the trilinear tent (±V): σ ≈ V/2, where the cone's own disc of
-// diameter D has σ ≈ D/4. Reading voxels of half the diameter, a sample every half diameter,
-// matches the two; voxels as wide as the cone made every cone act twice as wide, an object
-// beside a surface shadowing it far beyond its silhouette.
+// diameter D has σ ≈ D/4. Reading voxels of half the diameter matches the two; voxels as wide
+// as the cone made every cone act twice as wide, an object beside a surface shadowing it far
+// beyond its silhouette.
 const SAMPLE_PER_DIAMETER: f32 = 0.5;
 
-// Marches from `o` along unit `d` with steps of SAMPLE_PER_DIAMETER × the cone's width
-// (`aperture`: its diameter per unit length), sampling the mip level whose voxels are that
-// step's side, from `start` until both solutions are opaque or the cone leaves the volume (and
+// Distance between a cone's samples per cone diameter (at least SAMPLE_PER_DIAMETER): settings
+// `dvct.sample_spacing` for the pixels' cones, `dvct.bounce_spacing` for the second bounce's.
+fn pixel_spacing() -> f32 { return params.cone.z; }
+fn bounce_spacing() -> f32 { return params.cone.w; }
+
+// A sample that stands for `k` samples' length of the cone: its opacity compounds over them
+// (1 − (1 − α)^k, as k samples of the same voxels would), its colour keeps its share of it.
+fn stretch(s: vec4f, k: f32) -> vec4f {
+    let alpha = 1.0 - pow(max(1.0 - s.a, 0.0), k);
+    return vec4f(select(s.rgb * k, s.rgb * (alpha / s.a), s.a > 1e-6), alpha);
+}
+
+// Marches from `o` along unit `d` with steps of `spacing` × the cone's width (`aperture`: its
+// diameter per unit length), sampling the mip level whose voxels are SAMPLE_PER_DIAMETER × it, from `start` until both solutions are opaque or the cone leaves the volume (and
 // then the outer one, for a cone that starts inside the volume), its samples kept clear of the
 // plane of normal `n` through the surface it leaves. Outside the volumes there is nothing:
 // what a cone does not hit there is the probe's (its opacity says how much). A cone from
 // outside the volume sees only the volume (where the virtual content is: the two solutions
 // differ nowhere else), the pixels that the outer volume alone holds costing no more than
 // without it.
-fn trace_cone(o: vec3f, d: vec3f, aperture: f32, start: f32, n: vec3f) -> Cone {
+fn trace_cone(o: vec3f, d: vec3f, aperture: f32, spacing: f32, start: f32, n: vec3f) -> Cone {
     var out = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0));
     let lift = CONE_START_VOXELS * voxel_side();
-    let exit = march(&out, params, true, o, d, aperture, start, n, lift);
+    let exit = march(&out, params, true, o, d, aperture, spacing, start, n, lift);
     let lo = params.origin.xyz;
     if (all(o >= lo) && all(o <= lo + volume_side())) {
-        march(&out, outer, false, o, d, aperture, max(start, exit), n, lift);
+        march(&out, outer, false, o, d, aperture, spacing, max(start, exit), n, lift);
     }
     return out;
 }
@@ -120,6 +131,7 @@ fn march(
     o: vec3f,
     d: vec3f,
     aperture: f32,
+    spacing: f32,
     start: f32,
     n: vec3f,
     lift: f32,
@@ -133,6 +145,7 @@ fn march(
         if (t >= span.y || ((*out).rv.a >= 0.99 && (*out).r.a >= 0.99)) { break; }
         let diameter = max(voxel, aperture * t);
         let side = max(voxel, SAMPLE_PER_DIAMETER * diameter);
+        let step = max(side, spacing * diameter);
         let lod = min(log2(side / voxel), max_lod);
         // A sample of the cone, lifted off the plane of the surface it starts from (normal
         // `n`) until its trilinear footprint no longer reaches that plane's voxels: the
@@ -151,7 +164,7 @@ fn march(
         // border's voxels, at the coarsest level the whole volume's mean: the floor lit
         // itself through it).
         if (any(uvw < vec3f(0.0)) || any(uvw > vec3f(1.0))) {
-            t += side;
+            t += step;
             continue;
         }
         var s_rv: vec4f;
@@ -163,10 +176,16 @@ fn march(
             s_rv = sample_volume(outer_rv, outer_rv_x, outer_rv_y, outer_rv_z, uvw, lod, d);
             s_r = sample_volume(outer_r, outer_r_x, outer_r_y, outer_r_z, uvw, lod, d);
         }
+        // The most opaque single sample is one sample's (probe_occlusion), however long the
+        // step.
+        (*out).peak = max((*out).peak, vec2f(s_rv.a, s_r.a));
+        if (step > side) {
+            s_rv = stretch(s_rv, step / side);
+            s_r = stretch(s_r, step / side);
+        }
         (*out).rv += (1.0 - (*out).rv.a) * s_rv;
         (*out).r += (1.0 - (*out).r.a) * s_r;
-        (*out).peak = max((*out).peak, vec2f(s_rv.a, s_r.a));
-        t += side;
+        t += step;
     }
     return span.y;
 }
@@ -222,12 +241,12 @@ struct Gathered {
     env: vec3f,
 }
 
-fn gather_diffuse(p: vec3f, n: vec3f) -> Gathered {
+fn gather_diffuse(p: vec3f, n: vec3f, spacing: f32) -> Gathered {
     var out = Gathered(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
     let o = cone_origin(p, n);
     for (var k = 0u; k < DIFFUSE_CONES; k++) {
         let c = diffuse_cone(n, k);
-        let hit = trace_cone(o, c.xyz, params.cone.x, voxel_side(), n);
+        let hit = trace_cone(o, c.xyz, params.cone.x, spacing, voxel_side(), n);
         out.rv += c.w * hit.rv.rgb;
         out.r += c.w * hit.r.rgb;
         let w = c.w * env_radiance_at(frame, c.xyz, CONE_PROBE_ROUGHNESS);

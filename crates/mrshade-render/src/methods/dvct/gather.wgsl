@@ -63,11 +63,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     let s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
-    let e = gather_diffuse(s.position, s.normal);
+    let e = gather_diffuse(s.position, s.normal, pixel_spacing());
     var glossy = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0));
     if (!is_traced(m)) {
         let d = reflect(-s.view, s.normal);
-        glossy = trace_cone(cone_origin(s.position, s.normal), d, specular_aperture(s.roughness), voxel_side(), s.normal);
+        let aperture = specular_aperture(s.roughness);
+        glossy = trace_cone(cone_origin(s.position, s.normal), d, aperture, pixel_spacing(), voxel_side(), s.normal);
     }
     var env = e;
     // The probe's light from lights narrower than a cone shadowed by their maps, the rest by

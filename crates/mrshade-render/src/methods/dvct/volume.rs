@@ -12,7 +12,8 @@ pub struct VolumeParams {
     pub origin: Vec4,
     /// Voxels per side, mip levels, triangles, unused.
     pub info: UVec4,
-    /// Diffuse cone aperture, pixels per side of a trace texel (texel.wgsl), unused…
+    /// Diffuse cone aperture, pixels per side of a trace texel (texel.wgsl), the pixels' and the
+    /// second bounce's cone sample spacing (cones.wgsl).
     pub cone: Vec4,
 }
 

@@ -7,7 +7,7 @@ struct VolumeParams {
     // voxels per side, mip levels, triangles, 1 if the first bounce takes the probe's light
     info: vec4u,
     // diffuse cone aperture (diameter / length), pixels per side of a trace texel (texel.wgsl),
-    // unused…
+    // the pixels' and the second bounce's cone sample spacing (cones.wgsl)
     cone: vec4f,
 }
 
