@@ -89,6 +89,25 @@ impl GpuMaterials {
             sampler,
         }
     }
+
+    /// Layout entries of the texture arrays and their sampler at bindings `first`, `first + 1`
+    /// and `first + 2` of a group, as the shaders name them: textures_srgb, textures_linear,
+    /// texture_sampler (shaders/lib/material_textures.wgsl samples them).
+    pub fn texture_entries(first: u32, visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 3] {
+        use mrshade_gpu::bind;
+        let (float, array) = (wgpu::TextureSampleType::Float { filterable: true }, wgpu::TextureViewDimension::D2Array);
+        [
+            bind::texture(first, visibility, float, array),
+            bind::texture(first + 1, visibility, float, array),
+            bind::sampler(first + 2, visibility, wgpu::SamplerBindingType::Filtering),
+        ]
+    }
+
+    /// The resources of [`GpuMaterials::texture_entries`], in binding order.
+    pub fn texture_resources(&self) -> [wgpu::BindingResource<'_>; 3] {
+        use wgpu::BindingResource::{Sampler, TextureView};
+        [TextureView(&self.srgb.view), TextureView(&self.linear.view), Sampler(&self.sampler)]
+    }
 }
 
 fn gpu_material(

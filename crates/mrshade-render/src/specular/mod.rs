@@ -25,7 +25,7 @@ use crate::methods::PointLight;
 use crate::passes::direct::ShadowParams;
 use crate::passes::gbuffer::GBuffer;
 use crate::raster::{Casters, RasterViews, Rasterizer, ViewSpec};
-use crate::scene_gpu::{GpuProbe, GpuScene};
+use crate::scene_gpu::{GpuMaterials, GpuProbe, GpuScene};
 use crate::uniforms::FrameUniforms;
 use bytemuck::{Pod, Zeroable};
 pub use gbuffers::SpecularGBuffers;
@@ -267,8 +267,6 @@ impl SpecularStage {
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let uint = wgpu::TextureSampleType::Uint;
         let d2 = wgpu::TextureViewDimension::D2;
-        let array = wgpu::TextureViewDimension::D2Array;
-        let filterable = wgpu::TextureSampleType::Float { filterable: true };
         let storage_entries = |n: u32| (0..n).map(|i| bind::storage(i, cs)).collect::<Vec<_>>();
         use wgpu::BindingResource::{Sampler, TextureView};
         let s = inputs.gpu_scene;
@@ -360,11 +358,7 @@ impl SpecularStage {
         let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(20));
         // The probe (bindings 0–3) and the material textures hit surfaces are shaded with.
         let mut probe_entries = GpuProbe::layout_entries(cs).to_vec();
-        probe_entries.extend([
-            bind::texture(4, cs, filterable, array),
-            bind::texture(5, cs, filterable, array),
-            bind::sampler(6, cs, wgpu::SamplerBindingType::Filtering),
-        ]);
+        probe_entries.extend(GpuMaterials::texture_entries(4, cs));
         let resolve_probe = bind::layout(device, "specular/resolve_probe", &probe_entries);
         let temporal = (settings.temporal_weight > 0.0).then(|| {
             temporal::SpecularTemporal::new(
@@ -431,15 +425,7 @@ impl SpecularStage {
                 device,
                 "specular/resolve_probe",
                 &resolve_probe,
-                &[
-                    probe.resources().as_slice(),
-                    &[
-                        TextureView(&s.materials.srgb.view),
-                        TextureView(&s.materials.linear.view),
-                        Sampler(&s.materials.sampler),
-                    ],
-                ]
-                .concat(),
+                &[probe.resources().as_slice(), &s.materials.texture_resources()].concat(),
             ),
             bind::group(device, "specular/resolve_output", &resolve_output, &[TextureView(&resolved.view)]),
         ];

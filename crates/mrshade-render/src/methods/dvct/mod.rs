@@ -27,7 +27,7 @@ use crate::limits::Fit;
 use crate::outputs::Aov;
 use crate::passes::direct::ShadowParams;
 use crate::raster::Rasterizer;
-use crate::scene_gpu::{Geometry, GpuProbe};
+use crate::scene_gpu::{Geometry, GpuMaterials, GpuProbe};
 use anyhow::{Result, bail};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
@@ -182,17 +182,16 @@ impl DvctMethod {
             bind::group(device, label, &out_layout, &[TextureView(&rv), TextureView(&r)])
         };
         use wgpu::BindingResource::{Sampler, TextureView};
-        let m = &scene.materials;
-        let textures = [TextureView(&m.srgb.view), TextureView(&m.linear.view), Sampler(&m.sampler)];
-        let array = wgpu::TextureViewDimension::D2Array;
         let filterable = wgpu::TextureSampleType::Float { filterable: true };
-        let texture_entries = |first: u32| {
-            [
-                bind::texture(first, cs, filterable, array),
-                bind::texture(first + 1, cs, filterable, array),
-                bind::sampler(first + 2, cs, wgpu::SamplerBindingType::Filtering),
-            ]
-        };
+        // The light and bounce passes' group 2: the probe, the material textures and the frame.
+        let mut entries = GpuProbe::layout_entries(cs).to_vec();
+        entries.extend(GpuMaterials::texture_entries(4, cs));
+        entries.push(bind::uniform(7, cs));
+        let probe_textures_layout = bind::layout(device, "dvct/probe_textures_layout", &entries);
+        let mut resources = scene.probe.resources().to_vec();
+        resources.extend(scene.materials.texture_resources());
+        resources.push(frame_uniforms.as_entire_binding());
+        let probe_textures_group = bind::group(device, "dvct/probe_textures_group", &probe_textures_layout, &resources);
 
         // First bounce.
         let shadow_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -223,12 +222,6 @@ impl DvctMethod {
                 shadow_maps.as_entire_binding(),
             ],
         );
-        let mut entries = GpuProbe::layout_entries(cs).to_vec();
-        entries.extend(texture_entries(4));
-        let probe_textures_layout = bind::layout(device, "dvct/probe_textures_layout", &entries);
-        let mut resources = scene.probe.resources().to_vec();
-        resources.extend(textures.clone());
-        let probe_textures_group = bind::group(device, "dvct/probe_textures_group", &probe_textures_layout, &resources);
         let light_pipeline = compute_pipeline(
             device,
             "dvct/light",
@@ -276,26 +269,18 @@ impl DvctMethod {
         // Second bounce: each cascade's voxels gather its first bounce and the outer one's.
         let mut bounce = Vec::new();
         if settings.bounces >= 2 {
-            let mut entries = GpuProbe::layout_entries(cs).to_vec();
-            entries.extend(texture_entries(4));
-            entries.push(bind::uniform(7, cs));
-            let textures_layout = bind::layout(device, "dvct/bounce_probe_layout", &entries);
-            let mut resources = scene.probe.resources().to_vec();
-            resources.extend(textures.clone());
-            resources.push(frame_uniforms.as_entire_binding());
-            let textures_group = bind::group(device, "dvct/bounce_probe_group", &textures_layout, &resources);
             let pipeline = compute_pipeline(
                 device,
                 "dvct/bounce",
                 BOUNCE_SHADER,
-                &[&surface_layout, &volume_layout, &textures_layout, &out_layout],
+                &[&surface_layout, &volume_layout, &probe_textures_layout, &out_layout],
             );
             for c in &cascades {
                 let second = c.second.as_ref().expect("two bounces");
                 let groups = vec![
                     surface_group(c),
                     volume_group(&c.first, &outermost.first, &outermost.params_buffer, "dvct/first_bounce_group"),
-                    textures_group.clone(),
+                    probe_textures_group.clone(),
                     out_group(second, "dvct/second_bounce_out_group"),
                 ];
                 bounce.push((pipeline.clone(), groups));

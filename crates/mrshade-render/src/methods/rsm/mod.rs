@@ -6,7 +6,7 @@
 
 use crate::limits::Fit;
 use crate::raster::{RasterViews, Rasterizer, ViewSpec};
-use crate::scene_gpu::{GpuScene, ShadowLayer};
+use crate::scene_gpu::{GpuMaterials, GpuScene, ShadowLayer};
 use anyhow::{Result, bail};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
@@ -129,17 +129,7 @@ impl RsmPass {
         entries.extend((1..10).map(|b| bind::storage(b, cs)));
         entries.push(rw);
         let resolve_layout = bind::layout(device, "rsm/resolve_layout", &entries);
-        let float = wgpu::TextureSampleType::Float { filterable: true };
-        let array = wgpu::TextureViewDimension::D2Array;
-        let texture_layout = bind::layout(
-            device,
-            "rsm/texture_layout",
-            &[
-                bind::texture(0, cs, float, array),
-                bind::texture(1, cs, float, array),
-                bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering),
-            ],
-        );
+        let texture_layout = bind::layout(device, "rsm/texture_layout", &GpuMaterials::texture_entries(0, cs));
         let g = &scene.geometry;
         let m = &scene.materials;
         let params_buffer = uniform("rsm/params", bytemuck::bytes_of(&params));
@@ -149,7 +139,6 @@ impl RsmPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
         let layer_light = storage("rsm/layer_light", bytemuck::cast_slice(&layer_light));
-        use wgpu::BindingResource::{Sampler, TextureView};
         let resolve_groups = [
             bind::group(
                 device,
@@ -169,12 +158,7 @@ impl RsmPass {
                     texels.as_entire_binding(),
                 ],
             ),
-            bind::group(
-                device,
-                "rsm/texture_group",
-                &texture_layout,
-                &[TextureView(&m.srgb.view), TextureView(&m.linear.view), Sampler(&m.sampler)],
-            ),
+            bind::group(device, "rsm/texture_group", &texture_layout, &m.texture_resources()),
         ];
         let resolve = mrshade_gpu::shader::compute_pipeline(
             device,

@@ -114,21 +114,11 @@ impl GBufferPass {
                 bind::storage(6, cs),
             ],
         );
-        let array = wgpu::TextureViewDimension::D2Array;
-        let float = wgpu::TextureSampleType::Float { filterable: true };
-        let texture_layout = bind::layout(
-            device,
-            "gbuffer/texture_layout",
-            &[
-                bind::texture(0, cs, float, array),
-                bind::texture(1, cs, float, array),
-                bind::sampler(2, cs, wgpu::SamplerBindingType::Filtering),
-            ],
-        );
+        let texture_layout = bind::layout(device, "gbuffer/texture_layout", &GpuMaterials::texture_entries(0, cs));
         let outputs: Vec<wgpu::BindGroupLayoutEntry> =
             FORMATS.iter().enumerate().map(|(i, &f)| bind::storage_texture(i as u32, f)).collect();
         let output_layout = bind::layout(device, "gbuffer/output_layout", &outputs);
-        use wgpu::BindingResource::{Sampler, TextureView};
+        use wgpu::BindingResource::TextureView;
         let groups = [
             bind::group(
                 device,
@@ -144,12 +134,7 @@ impl GBufferPass {
                     camera.target.as_entire_binding(),
                 ],
             ),
-            bind::group(
-                device,
-                "gbuffer/texture_group",
-                &texture_layout,
-                &[TextureView(&materials.srgb.view), TextureView(&materials.linear.view), Sampler(&materials.sampler)],
-            ),
+            bind::group(device, "gbuffer/texture_group", &texture_layout, &materials.texture_resources()),
             bind::group(device, "gbuffer/output_group", &output_layout, &gbuffer.all().map(|t| TextureView(&t.view))),
         ];
         let pipeline = mrshade_gpu::shader::compute_pipeline(
