@@ -2,13 +2,11 @@
 //! `L_rv` and `L_r`: punctual lights with real-only and virtual-only shadow maps (Knecht
 //! Eq. 5.1–5.5) and the probe's unshadowed light.
 
-use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
+use super::{FrameChange, IndirectLight, LightTransport, MethodInputs};
 use crate::limits::Fit;
-use crate::outputs::Aov;
 use crate::raster::Rasterizer;
 use anyhow::Result;
 use mrshade_core::settings::RenderSettings;
-use mrshade_gpu::GpuContext;
 use mrshade_gpu::timing::Recorder;
 
 /// Nothing to build, prepare or record.
@@ -32,13 +30,6 @@ impl LightTransport for Direct {
     fn indirect(&self) -> Option<&IndirectLight> {
         None
     }
-    fn point_light(&self) -> Option<PointLight<'_>> {
-        None
-    }
-    fn read_aovs(&self, _: &GpuContext, _: &AovView) -> Result<Vec<Aov>> {
-        Ok(Vec::new())
-    }
-    fn seek(&mut self, _: u32) {}
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }

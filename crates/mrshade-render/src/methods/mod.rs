@@ -99,14 +99,19 @@ pub trait LightTransport {
     /// The indirect light direct lighting adds, if the method computes any.
     fn indirect(&self) -> Option<&IndirectLight>;
     /// The method's light at any surface point (for the surfaces reflections and
-    /// refractions reach), if it has more than the punctual lights and the probe.
-    fn point_light(&self) -> Option<PointLight<'_>>;
-    /// The method's own AOVs, read back after a frame.
-    fn read_aovs(&self, ctx: &GpuContext, view: &AovView) -> Result<Vec<Aov>>;
+    /// refractions reach), if it has more than the punctual lights and the probe (by
+    /// default it has not).
+    fn point_light(&self) -> Option<PointLight<'_>> {
+        None
+    }
+    /// The method's own AOVs, read back after a frame (by default none).
+    fn read_aovs(&self, _ctx: &GpuContext, _view: &AovView) -> Result<Vec<Aov>> {
+        Ok(Vec::new())
+    }
     /// Forgets the temporal history and numbers the next frame `frame` (its sampling seed):
     /// a range of a sequence rendered on its own then draws the same samples per frame as
-    /// the whole run.
-    fn seek(&mut self, frame: u32);
+    /// the whole run. By default nothing: a method without history or per-frame samples.
+    fn seek(&mut self, _frame: u32) {}
     /// The concrete method, for tests and AOVs that read its private buffers.
     fn as_any(&self) -> &dyn std::any::Any;
 }

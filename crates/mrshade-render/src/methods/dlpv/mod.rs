@@ -16,9 +16,8 @@ mod lights;
 use super::around::place;
 use super::probe_maps::{ProbeMaps, bounding_radius, layer_pairs};
 use super::rsm::{self, RsmPass};
-use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
+use super::{FrameChange, IndirectLight, LightTransport, MethodInputs};
 use crate::limits::Fit;
-use crate::outputs::Aov;
 use crate::raster::Rasterizer;
 use crate::scene_gpu::GpuProbe;
 use anyhow::Result;
@@ -28,7 +27,7 @@ use lights::{InjectSet, power_bound};
 use mrshade_core::settings::{DlpvSplat, RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
-use mrshade_gpu::{GpuContext, bind, wgsl};
+use mrshade_gpu::{bind, wgsl};
 use wgpu::util::DeviceExt;
 
 /// Mirrors `DlpvParams` in volume.wgsl.
@@ -447,16 +446,6 @@ impl LightTransport for DlpvMethod {
     fn indirect(&self) -> Option<&IndirectLight> {
         Some(&self.indirect)
     }
-
-    fn point_light(&self) -> Option<PointLight<'_>> {
-        None
-    }
-
-    fn read_aovs(&self, _: &GpuContext, _: &AovView) -> Result<Vec<Aov>> {
-        Ok(Vec::new())
-    }
-
-    fn seek(&mut self, _: u32) {}
 
     fn as_any(&self) -> &dyn std::any::Any {
         self

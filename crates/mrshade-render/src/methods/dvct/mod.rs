@@ -22,9 +22,8 @@ pub use volume::{Volume, VolumePair, VolumeParams, levels};
 use cascade::{Cascade, VOXEL_BYTES};
 
 use super::probe_maps::ProbeMaps;
-use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
+use super::{FrameChange, IndirectLight, LightTransport, MethodInputs};
 use crate::limits::Fit;
-use crate::outputs::Aov;
 use crate::passes::direct::ShadowParams;
 use crate::raster::Rasterizer;
 use crate::scene_gpu::{Geometry, GpuMaterials, GpuProbe};
@@ -32,7 +31,7 @@ use anyhow::{Result, bail};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
 use mrshade_gpu::timing::{Dispatch, Recorder};
-use mrshade_gpu::{GpuContext, bind, wgsl};
+use mrshade_gpu::{bind, wgsl};
 use wgpu::util::DeviceExt;
 
 /// The start of both groups over the triangles: the volume's uniform and the geometry.
@@ -426,16 +425,6 @@ impl LightTransport for DvctMethod {
     fn indirect(&self) -> Option<&IndirectLight> {
         Some(&self.indirect)
     }
-
-    fn point_light(&self) -> Option<PointLight<'_>> {
-        None
-    }
-
-    fn read_aovs(&self, _: &GpuContext, _: &AovView) -> Result<Vec<Aov>> {
-        Ok(Vec::new())
-    }
-
-    fn seek(&mut self, _: u32) {}
 
     fn as_any(&self) -> &dyn std::any::Any {
         self
