@@ -13,15 +13,20 @@ use serde_json::json;
 
 #[test]
 fn a_still_is_lit_by_every_vpl_at_every_pixel() {
-    // Frames interleave 4 × 4 (the thesis's); a still renderer takes `dir.still_interleave`.
+    // Frames interleave 4 × 4 (the thesis's); a still renderer takes `dir.still_interleave`,
+    // and its ISM splats `dir.still_splat_scale` (1) where frames' are `dir.splat_scale` (1.5).
     let mut s = Setup::top_down(16);
     s.top_toml = "method = \"dir\"\n".into();
     s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
     let (_dir, session) = s.session();
     let ctx = mrshade_testkit::gpu();
+    let frames = mrshade_render::Renderer::new(&ctx, &session).unwrap();
+    let still = mrshade_render::Renderer::for_still(&ctx, &session).unwrap();
     let interleave = |r: &mrshade_render::Renderer| r.method_as::<DirMethod>().unwrap().interleave();
-    assert_eq!(interleave(&mrshade_render::Renderer::new(&ctx, &session).unwrap()), 4);
-    assert_eq!(interleave(&mrshade_render::Renderer::for_still(&ctx, &session).unwrap()), 1);
+    assert_eq!((interleave(&frames), interleave(&still)), (4, 1));
+    let splat = |r: &mrshade_render::Renderer| r.method_as::<DirMethod>().unwrap().ism_resources.params.splat;
+    assert!((splat(&still).x * 1.5 - splat(&frames).x).abs() < 1e-6 * splat(&frames).x);
+    assert!((splat(&still).y * 1.5 - splat(&frames).y).abs() < 1e-6 * splat(&frames).y);
 }
 
 /// VPL flag bits (vpl.wgsl).

@@ -127,10 +127,12 @@ pub struct RenderSettings {
 
 impl RenderSettings {
     /// The settings of a still (many frames of one view averaged into one image): those of
-    /// frames, but `dir.interleave` is `dir.still_interleave`.
+    /// frames, but `dir.interleave` is `dir.still_interleave` and `dir.splat_scale` is
+    /// `dir.still_splat_scale`.
     pub fn for_still(&self) -> Self {
         let mut still = self.clone();
         still.dir.interleave = self.dir.still_interleave;
+        still.dir.splat_scale = self.dir.still_splat_scale;
         still
     }
 

@@ -62,6 +62,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dir.rsm_resolution", Kind::Number),
     ("dir.interleave", Kind::Number),
     ("dir.still_interleave", Kind::Number),
+    ("dir.still_splat_scale", Kind::Number),
     ("dir.near_field_samples", Kind::Number),
     ("dir.near_field_radius", Kind::Number),
     ("dir.near_field_bounce_samples", Kind::Number),
