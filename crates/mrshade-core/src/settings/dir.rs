@@ -331,6 +331,8 @@ mod tests {
         assert!(d.validate().unwrap_err().contains("dir.vpl_count"));
         let d = DirSettings { near_field_radius: f32::NAN, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.near_field_radius"));
+        let d = DirSettings { still_splat_scale: 0.0, ..Default::default() };
+        assert!(d.validate().unwrap_err().contains("dir.still_splat_scale"));
         let d = DirSettings { near_field_bounce_samples: 65, ..Default::default() };
         assert!(d.validate().unwrap_err().contains("dir.near_field_bounce_samples"));
         // Each valid alone, too many together (8 GB of points).

@@ -34,8 +34,8 @@ pub struct DvctSettings {
     /// benchmark scenes' region FLIP within 0.5 % (docs/benchmarks.md).
     pub bounce_spacing: f32,
     /// Injected bounces: 1 is the thesis's single bounce (spec §2.13.9: the unlit side of a
-    /// virtual object is black); 2 re-injects the first bounce, gathered per voxel by six
-    /// cones, so light that reached a surface indirectly bounces on. Default 2.
+    /// virtual object is black); 2 re-injects the first bounce, gathered per voxel by the nine
+    /// diffuse cones, so light that reached a surface indirectly bounces on. Default 2.
     pub bounces: u32,
     /// Trace the pixels' cones once per 2 × 2 block, from its first covered pixel, and give
     /// each pixel the light of the blocks around it that lie on the same surface (depth and

@@ -103,8 +103,9 @@ fn stretch(s: vec4f, k: f32) -> vec4f {
 }
 
 // Marches from `o` along unit `d` with steps of `spacing` × the cone's width (`aperture`: its
-// diameter per unit length), sampling the mip level whose voxels are SAMPLE_PER_DIAMETER × it, from `start` until both solutions are opaque or the cone leaves the volume (and
-// then the outer one, for a cone that starts inside the volume), its samples kept clear of the
+// diameter per unit length), sampling the mip level whose voxels are SAMPLE_PER_DIAMETER × it,
+// from `start` until both solutions are opaque or the cone leaves the volume (and then the
+// outer one, for a cone that starts inside the volume), its samples kept clear of the
 // plane of normal `n` through the surface it leaves. Outside the volumes there is nothing:
 // what a cone does not hit there is the probe's (its opacity says how much). A cone from
 // outside the volume sees only the volume (where the virtual content is: the two solutions
