@@ -211,7 +211,7 @@ fn real_surfaces_beyond_the_volume_hide_the_probe_through_the_outer_volume() {
         // Every pixel traced: a block's light is not shared with the pixels beyond the inner
         // volume, whose cones see the inner volume only. The cones alone shadow the probe
         // (its lights' maps would take over where they cover the floor).
-        s.extra_toml += &format!("outer_scale = {outer_scale}\nhalf_resolution = false\nprobe_lights = 0\n");
+        s.extra_toml += &format!("outer_scale = {outer_scale}\ntrace_block = 1\nprobe_lights = 0\n");
         let r = s.render();
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
@@ -229,37 +229,46 @@ fn real_surfaces_beyond_the_volume_hide_the_probe_through_the_outer_volume() {
 
 #[test]
 fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
-    // A cube on a floor under a lamp and the probe, traced per pixel and once per 2 × 2 block:
-    // each pixel takes the blocks' light of its own surface only (nothing across the cube's
-    // edges) under its own material, so the two agree closely everywhere. What differs
-    // follows the seams of the 32³ voxels, which single pixels show and blocks average (up to
-    // a tenth of the brightest indirect light at this image's 1.6 cm pixels).
-    let render = |half: bool| {
-        let mut s = Setup::top_down(64);
+    // A cube on a floor under a lamp and the probe, traced per pixel and once per block: each
+    // pixel takes the blocks' light of its own surface only (nothing across the cube's edges)
+    // under its own material, so they agree closely everywhere. What differs follows the
+    // seams of the 32³ voxels, which single pixels show and blocks average (up to a tenth of
+    // the brightest indirect light with blocks 3.2 cm wide: 2 × 2 pixels of a 64² image, 4 × 4
+    // of a 128² one).
+    let render = |size: u32, block: u32| {
+        let mut s = Setup::top_down(size);
         s.probe = Some([0.8, 0.8, 0.8]);
         s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
         s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
         dvct(&mut s, 32);
-        s.extra_toml += &format!("half_resolution = {half}\n");
+        s.extra_toml += &format!("trace_block = {block}\n");
         let r = s.render();
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let light = method.indirect.read_light(&r.ctx).unwrap().rv;
         let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap().rv;
         (light, visibility)
     };
-    let ((full_light, full_vis), (half_light, half_vis)) = (render(false), render(true));
-    let mut vis_errors: Vec<f32> = full_vis.iter().zip(&half_vis).map(|(a, b)| (a[0] - b[0]).abs()).collect();
-    let light_scale = full_light.pixels.iter().map(|p| p[0]).fold(0.0, f32::max);
-    let mut light_errors: Vec<f32> =
-        full_light.pixels.iter().zip(&half_light.pixels).map(|(a, b)| (a[0] - b[0]).abs() / light_scale).collect();
-    for errors in [&mut vis_errors, &mut light_errors] {
-        errors.sort_by(f32::total_cmp);
+    for (size, block) in [(64, 2), (128, 4)] {
+        let (full_light, full_vis) = render(size, 1);
+        let light_scale = full_light.pixels.iter().map(|p| p[0]).fold(0.0, f32::max);
+        let (block_light, block_vis) = render(size, block);
+        let mut vis_errors: Vec<f32> = full_vis.iter().zip(&block_vis).map(|(a, b)| (a[0] - b[0]).abs()).collect();
+        let mut light_errors: Vec<f32> =
+            full_light.pixels.iter().zip(&block_light.pixels).map(|(a, b)| (a[0] - b[0]).abs() / light_scale).collect();
+        for errors in [&mut vis_errors, &mut light_errors] {
+            errors.sort_by(f32::total_cmp);
+        }
+        let stats = |e: &[f32]| (e.iter().sum::<f32>() / e.len() as f32, e[e.len() * 99 / 100], e[e.len() - 1]);
+        let (vis, light) = (stats(&vis_errors), stats(&light_errors));
+        eprintln!(
+            "{block} × {block}: probe visibility: mean, 99th percentile, max |Δ| {vis:.3?}; indirect light {light:.3?}"
+        );
+        assert!(vis.0 < 0.01 && vis.1 < 0.05, "{block} × {block}: probe visibility: {vis:?}");
+        assert!(
+            light.0 < 0.03 && light.1 < 0.12,
+            "{block} × {block}: indirect light (share of its largest value): {light:?}"
+        );
     }
-    let stats = |e: &[f32]| (e.iter().sum::<f32>() / e.len() as f32, e[e.len() * 99 / 100], e[e.len() - 1]);
-    let (vis, light) = (stats(&vis_errors), stats(&light_errors));
-    eprintln!("probe visibility: mean, 99th percentile, max |Δ| {vis:.3?}; indirect light {light:.3?}");
-    assert!(vis.0 < 0.01 && vis.1 < 0.05, "probe visibility: {vis:?}");
-    assert!(light.0 < 0.03 && light.1 < 0.12, "indirect light (share of its largest value): {light:?}");
 }
 
 #[test]
@@ -274,7 +283,7 @@ fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
         s.sun = Some([200.0, 200.0, 200.0]);
         s.plane(0.5, 0.0, 0.5, true).cube([0.0, 0.05, -0.1], 0.05, true).cube([0.1, 0.04, 0.05], 0.04, false);
         dvct(&mut s, 32);
-        s.extra_toml += &format!("probe_lights = {probe_lights}\nhalf_resolution = false\n");
+        s.extra_toml += &format!("probe_lights = {probe_lights}\ntrace_block = 1\n");
         let r = s.render();
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();

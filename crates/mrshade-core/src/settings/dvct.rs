@@ -17,10 +17,16 @@ pub struct DvctSettings {
     /// edge, centred on it. Default 2 (spec §2.13.1: "twice the largest bounding box edge").
     pub extent: f32,
     /// Side of a second, coarser volume around the first, as a multiple of the first's side
-    /// (the same voxel count): cones that leave the first go on through it, so real surfaces
-    /// beyond the thesis's volume (a desk, a room's walls) still hide the probe and send their
-    /// bounce light. 1 turns it off (the thesis's single volume). Default 4.
+    /// (`outer_resolution` voxels per side): cones that leave the first go on through it, so
+    /// real surfaces beyond the thesis's volume (a desk, a room's walls) still hide the probe
+    /// and send their bounce light. 1 turns it off (the thesis's single volume). Default 4.
     pub outer_scale: f32,
+    /// Voxels along each side of the outer volume (a power of two, 16–512; `resolution` if
+    /// that is smaller). Default 64: its voxels are then 8 × the inner ones, about as wide as the
+    /// narrowest cone that leaves the inner volume reads (half a diameter of 0.6 × half the
+    /// inner side), so cones from the inner volume see the same light; voxelising, lighting and
+    /// bouncing it takes an eighth of the work of 128³ when the content moves.
+    pub outer_resolution: u32,
     /// Diameter-to-length ratio of the nine diffuse cones. Default 0.6 (spec §2.13.7, [Code]).
     pub diffuse_aperture: f32,
     /// Distance between the samples of the pixels' cones, in cone diameters (0.5–2). Each
@@ -37,11 +43,14 @@ pub struct DvctSettings {
     /// virtual object is black); 2 re-injects the first bounce, gathered per voxel by the nine
     /// diffuse cones, so light that reached a surface indirectly bounces on. Default 2.
     pub bounces: u32,
-    /// Trace the pixels' cones once per 2 × 2 block, from its first covered pixel, and give
-    /// each pixel the light of the blocks around it that lie on the same surface (depth and
-    /// normal alike), under its own material: a quarter of the cones (diffuse light and the
-    /// probe's shadow vary slowly, as in [CNS+11]). `false` traces every pixel. Default true.
-    pub half_resolution: bool,
+    /// Pixels per side of the blocks the pixels' cones are traced once for (1, 2, 4 or 8), from
+    /// a covered pixel of the block; each pixel then takes the light of the blocks around it
+    /// that lie on the same surface (depth and normal alike), under its own material (diffuse
+    /// light and the probe's shadow vary slowly, as in [CNS+11]). 1 traces every pixel.
+    /// Default 4: a sixteenth of the cones, the four diffuse benchmark scenes' region FLIP
+    /// within 1 % of every pixel's and of 2 × 2 blocks' at 640×480 (8 brightens the edges of
+    /// small faces; docs/benchmarks.md).
+    pub trace_block: u32,
     /// Directional lights the probe is split into (median cut; 0 or a power of two up to 64)
     /// whose real-only and virtual-only maps around the volume shadow the probe's light on
     /// the pixels they cover, sharp where the probe's light comes from a small bright source
@@ -59,11 +68,12 @@ impl Default for DvctSettings {
             resolution: 128,
             extent: 2.0,
             outer_scale: 4.0,
+            outer_resolution: 64,
             diffuse_aperture: 0.6,
             sample_spacing: 0.5,
             bounce_spacing: 1.0,
             bounces: 2,
-            half_resolution: true,
+            trace_block: 4,
             probe_lights: 32,
             probe_map_resolution: 128,
         }
@@ -73,7 +83,12 @@ impl Default for DvctSettings {
 impl DvctSettings {
     /// Pixels per side of the blocks the cones are traced once for.
     pub fn trace_scale(&self) -> u32 {
-        if self.half_resolution { 2 } else { 1 }
+        self.trace_block
+    }
+
+    /// Voxels per side of the outer volume: `outer_resolution`, at most `resolution`.
+    pub fn outer_voxels(&self) -> u32 {
+        self.outer_resolution.min(self.resolution)
     }
 
     /// Checks every value; the error names the offending field.
@@ -89,6 +104,7 @@ impl DvctSettings {
             "dvct.outer_scale",
             format!("must be between 1 and 16 times the inner volume's side, got {}", self.outer_scale),
         )?;
+        check_power_of_two(self.outer_resolution, 16, 512, "dvct.outer_resolution", " voxels")?;
         check(
             self.diffuse_aperture.is_finite() && (0.05..=2.0).contains(&self.diffuse_aperture),
             "dvct.diffuse_aperture",
@@ -104,6 +120,11 @@ impl DvctSettings {
             )?;
         }
         check((1..=2).contains(&self.bounces), "dvct.bounces", format!("must be 1 or 2, got {}", self.bounces))?;
+        check(
+            matches!(self.trace_block, 1 | 2 | 4 | 8),
+            "dvct.trace_block",
+            format!("must be 1, 2, 4 or 8 pixels, got {}", self.trace_block),
+        )?;
         check_probe_lights(self.probe_lights, "dvct.probe_lights")?;
         check_power_of_two(self.probe_map_resolution, 32, 2048, "dvct.probe_map_resolution", " texels")
     }
@@ -121,12 +142,16 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("dvct.extent"));
         let bad = DvctSettings { outer_scale: 0.5, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.outer_scale"));
+        let bad = DvctSettings { outer_resolution: 48, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("dvct.outer_resolution"));
         let bad = DvctSettings { sample_spacing: 0.1, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.sample_spacing"));
         let bad = DvctSettings { bounce_spacing: f32::NAN, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.bounce_spacing"));
         let bad = DvctSettings { bounces: 3, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.bounces"));
+        let bad = DvctSettings { trace_block: 3, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("dvct.trace_block"));
         let bad = DvctSettings { probe_lights: 6, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.probe_lights"));
         let bad = DvctSettings { probe_map_resolution: 100, ..Default::default() };

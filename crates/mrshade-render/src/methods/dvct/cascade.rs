@@ -1,7 +1,8 @@
 //! One volume of delta voxel cone tracing with what is drawn into it: its uniform, its
 //! voxelisation and the light volumes of its bounces. The method has the thesis's volume around
-//! the virtual content and, with `dvct.outer_scale` > 1, a coarser one around it with the same
-//! voxel count, that cones go on through when they leave the first (cones.wgsl).
+//! the virtual content and, with `dvct.outer_scale` > 1, a coarser one around it of
+//! `dvct.outer_resolution` voxels per side, that cones go on through when they leave the first
+//! (cones.wgsl).
 
 use super::volume::{VolumePair, VolumeParams, levels};
 use crate::methods::around::place;
@@ -30,17 +31,16 @@ pub struct Cascade {
 }
 
 impl Cascade {
-    /// The cascade of `extent` × the virtual content's largest edge (`label`: its GPU objects'
-    /// prefix).
+    /// The cascade of `extent` × the virtual content's largest edge and `res` voxels per side
+    /// (`label`: its GPU objects' prefix).
     pub fn new(
         device: &wgpu::Device,
         label: &str,
         settings: &DvctSettings,
-        extent: f32,
+        (extent, res): (f32, u32),
         boxes: Boxes,
         triangles: u32,
     ) -> Self {
-        let res = settings.resolution;
         let (origin, side) = place(boxes.0, boxes.1, extent);
         let params = VolumeParams {
             origin: origin.extend(side / res as f32),
@@ -67,6 +67,11 @@ impl Cascade {
         let first = VolumePair::new(device, &format!("{label}/first_bounce"), res);
         let second = (settings.bounces >= 2).then(|| VolumePair::new(device, &format!("{label}/second_bounce"), res));
         Self { params, params_buffer, extent, voxels, voxel_words, first, second }
+    }
+
+    /// Voxels per side.
+    pub fn resolution(&self) -> u32 {
+        self.params.info.x
     }
 
     /// The volumes the pixels' cones read (the second bounce's, else the first's).

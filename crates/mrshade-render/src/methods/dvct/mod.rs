@@ -66,7 +66,7 @@ pub struct DvctMethod {
     /// 1 and solution: the group and the level's side.
     first_mips: Vec<(wgpu::BindGroup, u32)>,
     second_mips: Vec<(wgpu::BindGroup, u32)>,
-    /// The cones, once per trace texel (`dvct.half_resolution`).
+    /// The cones, once per trace texel (`dvct.trace_block`).
     trace: Dispatch,
     /// Their light per pixel, over the internal size.
     resolve: Dispatch,
@@ -99,13 +99,17 @@ pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
 
 /// GPU bytes of the method, item by item.
 pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers: u64) -> Vec<(&'static str, u64)> {
-    let res = settings.dvct.resolution;
-    let cascades = 1 + (settings.dvct.outer_scale > 1.0) as u64;
-    let pairs = settings.dvct.bounces as u64 * cascades;
+    let d = &settings.dvct;
+    let mut sides = vec![d.resolution as u64];
+    if d.outer_scale > 1.0 {
+        sides.push(d.outer_voxels() as u64);
+    }
+    let voxels: u64 = sides.iter().map(|r| r.pow(3) * VOXEL_BYTES).sum();
+    let light: u64 = sides.iter().map(|&r| d.bounces as u64 * VolumePair::bytes(r as u32)).sum();
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
-        ("dvct voxels (dvct.resolution³ per volume)", cascades * (res as u64).pow(3) * VOXEL_BYTES),
-        ("dvct light volumes (dvct.resolution³ × bounces per volume, with mips)", pairs * VolumePair::bytes(res)),
+        ("dvct voxels (dvct.resolution³, dvct.outer_resolution³)", voxels),
+        ("dvct light volumes (voxels × bounces per volume, with mips)", light),
         (
             "dvct probe-light maps (2 × dvct.probe_lights × dvct.probe_map_resolution²)",
             super::rsm::bytes(2 * settings.dvct.probe_lights as u64, settings.dvct.probe_map_resolution),
@@ -128,15 +132,15 @@ impl DvctMethod {
         let MethodInputs { ctx, session, scene, frame_uniforms, shadow_maps, .. } = *inputs;
         let device = &ctx.device;
         let settings = &session.settings.dvct;
-        let res = settings.resolution;
         let cs = wgpu::ShaderStages::COMPUTE;
         let g = &scene.geometry;
         let scene_box = session.scene.bounds();
         let boxes = (g.virtual_box(), scene_box);
-        let mut cascades = vec![Cascade::new(device, "dvct", settings, settings.extent, boxes, g.triangle_count)];
+        let inner = (settings.extent, settings.resolution);
+        let mut cascades = vec![Cascade::new(device, "dvct", settings, inner, boxes, g.triangle_count)];
         if settings.outer_scale > 1.0 {
-            let extent = settings.extent * settings.outer_scale;
-            cascades.push(Cascade::new(device, "dvct/outer", settings, extent, boxes, g.triangle_count));
+            let outer = (settings.extent * settings.outer_scale, settings.outer_voxels());
+            cascades.push(Cascade::new(device, "dvct/outer", settings, outer, boxes, g.triangle_count));
         }
         let outermost = cascades.last().expect("one cascade");
 
@@ -297,9 +301,9 @@ impl DvctMethod {
             &[finer(0), finer(1), finer(2), storage_3d(3), storage_3d(4), storage_3d(5)],
         );
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
-        let chain = |pairs: Vec<&VolumePair>| {
+        let chain = |pairs: Vec<(&VolumePair, u32)>| {
             let mut groups = Vec::new();
-            for pair in pairs {
+            for (pair, res) in pairs {
                 for level in 1..levels(res) {
                     for volume in [&pair.rv, &pair.r] {
                         let finer = volume.level(level - 1);
@@ -311,8 +315,8 @@ impl DvctMethod {
             }
             groups
         };
-        let first_mips = chain(cascades.iter().map(|c| &c.first).collect());
-        let second_mips = chain(cascades.iter().filter_map(|c| c.second.as_ref()).collect());
+        let first_mips = chain(cascades.iter().map(|c| (&c.first, c.resolution())).collect());
+        let second_mips = chain(cascades.iter().filter_map(|c| Some((c.second.as_ref()?, c.resolution()))).collect());
 
         // The pixels' cones, once per trace texel, then resolved per pixel.
         let inner = &cascades[0];
@@ -366,9 +370,10 @@ impl DvctMethod {
         }
     }
 
+    /// Records one pass per cascade (`passes` in the cascades' order).
     fn record_voxel_passes(&self, pass: &mut wgpu::ComputePass<'_>, passes: &[VoxelPass]) {
-        let groups = self.cascades[0].params.info.x.div_ceil(4);
-        for (pipeline, bind_groups) in passes {
+        for ((pipeline, bind_groups), cascade) in passes.iter().zip(&self.cascades) {
+            let groups = cascade.resolution().div_ceil(4);
             pass.set_pipeline(pipeline);
             for (i, g) in bind_groups.iter().enumerate() {
                 pass.set_bind_group(i as u32, g, &[]);

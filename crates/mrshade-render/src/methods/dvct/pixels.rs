@@ -1,4 +1,4 @@
-//! The pixels' cones of `dvct` (gather.wgsl), once per trace texel (`dvct.half_resolution`),
+//! The pixels' cones of `dvct` (gather.wgsl), once per trace texel (`dvct.trace_block`),
 //! and their resolve per pixel (resolve.wgsl) into the [`IndirectLight`] that direct
 //! lighting adds; the probe's lights and their maps, whose visibility the cones blend in.
 
