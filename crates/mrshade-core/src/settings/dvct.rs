@@ -81,11 +81,6 @@ impl Default for DvctSettings {
 }
 
 impl DvctSettings {
-    /// Pixels per side of the blocks the cones are traced once for.
-    pub fn trace_scale(&self) -> u32 {
-        self.trace_block
-    }
-
     /// Voxels per side of the outer volume: `outer_resolution`, at most `resolution`.
     pub fn outer_voxels(&self) -> u32 {
         self.outer_resolution.min(self.resolution)

@@ -47,7 +47,7 @@ impl Cascade {
             info: UVec4::new(res, levels(res), triangles, (settings.bounces == 1) as u32),
             cone: Vec4::new(
                 settings.diffuse_aperture,
-                settings.trace_scale() as f32,
+                settings.trace_block as f32,
                 settings.sample_spacing,
                 settings.bounce_spacing,
             ),

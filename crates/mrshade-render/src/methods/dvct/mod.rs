@@ -301,9 +301,10 @@ impl DvctMethod {
             &[finer(0), finer(1), finer(2), storage_3d(3), storage_3d(4), storage_3d(5)],
         );
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
-        let chain = |pairs: Vec<(&VolumePair, u32)>| {
+        let chain = |pairs: Vec<&VolumePair>| {
             let mut groups = Vec::new();
-            for (pair, res) in pairs {
+            for pair in pairs {
+                let res = pair.resolution();
                 for level in 1..levels(res) {
                     for volume in [&pair.rv, &pair.r] {
                         let finer = volume.level(level - 1);
@@ -315,8 +316,8 @@ impl DvctMethod {
             }
             groups
         };
-        let first_mips = chain(cascades.iter().map(|c| (&c.first, c.resolution())).collect());
-        let second_mips = chain(cascades.iter().filter_map(|c| Some((c.second.as_ref()?, c.resolution()))).collect());
+        let first_mips = chain(cascades.iter().map(|c| &c.first).collect());
+        let second_mips = chain(cascades.iter().filter_map(|c| c.second.as_ref()).collect());
 
         // The pixels' cones, once per trace texel, then resolved per pixel.
         let inner = &cascades[0];

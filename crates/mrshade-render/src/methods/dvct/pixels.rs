@@ -46,7 +46,7 @@ impl PixelPasses {
             gbuffer,
             &scene.materials.buffer,
         );
-        let scale = settings.trace_scale();
+        let scale = settings.trace_block;
         let trace_size = (internal_size.0.div_ceil(scale), internal_size.1.div_ceil(scale));
         let traced = IndirectLight::new(device, "dvct/traced", trace_size);
         let glossy = IndirectLight::new(device, "dvct/traced_glossy", trace_size).light;

@@ -104,6 +104,11 @@ impl VolumePair {
         Self { rv, r, sampled }
     }
 
+    /// Voxels per side (the base texture's).
+    pub fn resolution(&self) -> u32 {
+        self.rv.base.width()
+    }
+
     /// Bytes of both volumes with their chains.
     pub fn bytes(resolution: u32) -> u64 {
         let voxels = (resolution as u64).pow(3);
