@@ -130,6 +130,7 @@ impl Renderer {
             vertices_deformed: self.scene.geometry.deformed(),
             moved_light_layers: lights_moved.then_some(&self.scene.shadow_layers[..]),
             camera_moved,
+            photo_changed: inputs.photo.is_some(),
         };
         self.method.prepare(queue, &change);
     }

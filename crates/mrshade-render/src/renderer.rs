@@ -150,6 +150,7 @@ impl Renderer {
             radiance: &radiance,
             internal_size: internal,
             light_photons: light_photons.as_ref(),
+            photo: &photo.photo,
         });
         let shading = settings.ibl.virtual_shading;
         // SH coefficients of the probe's projection: PRT's 9 or 16, else the 9 of irradiance.

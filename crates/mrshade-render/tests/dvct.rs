@@ -304,3 +304,56 @@ fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
     eprintln!("cones alone: in the sun shadow {cones_shadow:.3}");
     assert!(cones_shadow > shadow + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
 }
+
+#[test]
+fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own() {
+    // A real floor under a virtual cube, seen from above, with a photo of one colour: the floor's
+    // voxels the camera sees hold the photo's radiance in the real-only volume (photo / exposure,
+    // spec §2.11's (T_μ² + T_μ)·L_e ≈ B); those under the cube, which the camera does not see,
+    // keep their own light (the lamp's, far from the photo's colour); with
+    // `dvct.photo_voxels = false` every voxel keeps its own.
+    let floor_voxels = |photo_voxels: bool| {
+        let mut s = Setup::top_down(32);
+        s.photo = Box::new(|_, _| [200, 150, 100]);
+        s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
+        s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("photo_voxels = {photo_voxels}\n");
+        let r = s.render();
+        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let params = method.params();
+        let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
+        let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, &method.volumes().r.base, 0).unwrap();
+        let texels: &[[half::f16; 4]] = bytemuck::cast_slice(&bytes);
+        // (seen, hidden): the floor's occupied voxels beside the cube's silhouette as the camera
+        // sees it (at 1 m, the cube's top hides the floor out to 0.125 m), and under it.
+        let (mut seen, mut hidden) = (Vec::new(), Vec::new());
+        for i in 0..res * res * res {
+            let v = UVec3::new(i % res, (i / res) % res, i / (res * res));
+            let p = origin + (v.as_vec3() + 0.5) * voxel;
+            let t = texels[i as usize].map(|c| c.to_f32());
+            if p.y.abs() > voxel || t[3] < 0.5 {
+                continue;
+            }
+            let reach = p.x.abs().max(p.z.abs());
+            if reach > 0.15 {
+                seen.push(Vec3::new(t[0], t[1], t[2]));
+            } else if reach < 0.08 {
+                hidden.push(Vec3::new(t[0], t[1], t[2]));
+            }
+        }
+        assert!(seen.len() > 100 && hidden.len() > 50, "{} seen, {} hidden floor voxels", seen.len(), hidden.len());
+        (seen, hidden)
+    };
+    let photo = Vec3::new(200.0, 150.0, 100.0).map(|c| mrshade_core::color::srgb_to_linear(c / 255.0));
+    let (seen, hidden) = floor_voxels(true);
+    for l in &seen {
+        assert!((*l - photo).abs().max_element() < 2e-3 * photo.x, "a seen voxel holds {l}, the photo {photo}");
+    }
+    let mean_hidden = hidden.iter().sum::<Vec3>() / hidden.len() as f32;
+    // The lamp's light on a grey floor is grey: nothing like the photo's orange.
+    assert!((mean_hidden.x - mean_hidden.z).abs() < 0.05 * mean_hidden.x, "hidden voxels hold {mean_hidden}");
+    let (own, _) = floor_voxels(false);
+    let mean_own = own.iter().sum::<Vec3>() / own.len() as f32;
+    assert!((mean_own.x - mean_own.z).abs() < 0.05 * mean_own.x, "without the photo the voxels hold {mean_own}");
+}

@@ -51,6 +51,13 @@ pub struct DvctSettings {
     /// within 1 % of every pixel's and of 2 × 2 blocks' at 640×480 (8 brightens the edges of
     /// small faces; docs/benchmarks.md).
     pub trace_block: u32,
+    /// Whether real voxels whose surface the camera sees take their light from the photo (with
+    /// the virtual content's change on top) rather than from their own two bounces: the photo
+    /// holds every bounce of the real scene's light (spec §2.11: "in practice Σ T_μ^i L_e is the
+    /// camera image"), where the voxels' own bounces hold about 70 % of a cornell wall's. The
+    /// volumes are then lit again when the photo or the camera changes (a stream's frames).
+    /// Default true.
+    pub photo_voxels: bool,
     /// Directional lights the probe is split into (median cut; 0 or a power of two up to 64)
     /// whose real-only and virtual-only maps around the volume shadow the probe's light on
     /// the pixels they cover, sharp where the probe's light comes from a small bright source
@@ -74,6 +81,7 @@ impl Default for DvctSettings {
             bounce_spacing: 1.0,
             bounces: 2,
             trace_block: 4,
+            photo_voxels: true,
             probe_lights: 32,
             probe_map_resolution: 128,
         }

@@ -46,6 +46,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.bounce_spacing", Kind::Number),
     ("dvct.bounces", Kind::Number),
     ("dvct.trace_block", Kind::Number),
+    ("dvct.photo_voxels", Kind::Bool),
     ("dlpv.resolution", Kind::Number),
     ("dlpv.propagation_steps", Kind::Number),
     ("dlpv.rsm_resolution", Kind::Number),

@@ -61,6 +61,8 @@ pub struct MethodInputs<'a> {
     /// The punctual lights' photons (the specular stage's caustics), if they shoot any: `dir`
     /// turns them into caustic VPLs (reflections spec §2.18).
     pub light_photons: Option<&'a crate::specular::caustics::LightPhotons>,
+    /// The photo (linear camera values at the output size), the real surfaces' measured light.
+    pub photo: &'a Target,
 }
 
 /// What changed since the previous frame, for a method's per-frame preparation.
@@ -76,6 +78,8 @@ pub struct FrameChange<'a> {
     pub moved_light_layers: Option<&'a [ShadowLayer]>,
     /// Whether the camera moved (history is reprojected; light in the world did not change).
     pub camera_moved: bool,
+    /// Whether a new photo was uploaded for this frame.
+    pub photo_changed: bool,
 }
 
 /// What a method's AOVs are drawn with.

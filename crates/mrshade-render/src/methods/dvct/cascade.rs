@@ -4,7 +4,7 @@
 //! `dvct.outer_resolution` voxels per side, that cones go on through when they leave the first
 //! (cones.wgsl).
 
-use super::volume::{VolumePair, VolumeParams, levels};
+use super::volume::{self, VolumePair, VolumeParams, levels};
 use crate::methods::around::place;
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::settings::DvctSettings;
@@ -44,7 +44,7 @@ impl Cascade {
         let (origin, side) = place(boxes.0, boxes.1, extent);
         let params = VolumeParams {
             origin: origin.extend(side / res as f32),
-            info: UVec4::new(res, levels(res), triangles, (settings.bounces == 1) as u32),
+            info: UVec4::new(res, levels(res), triangles, volume::flags(settings)),
             cone: Vec4::new(
                 settings.diffuse_aperture,
                 settings.trace_block as f32,

@@ -6,6 +6,7 @@
 // virtual surface where a voxel has one, else the real one; the real-only volume only real
 // surfaces. Their difference is the thesis's V_Δ = V_ρ − V_μ, exactly (§2.13.2: "identical to
 // the differential"), with no RSM texels racing for a voxel. Premultiplied: rgb·α, α = 1.
+// With a single bounce, real voxels the camera sees then take the photo's light (photo.wgsl).
 
 @group(0) @binding(0) var<uniform> params: VolumeParams;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
@@ -53,7 +54,8 @@ fn first_bounce(s: VoxelSurface) -> Radiance {
         e.rv += e_o * min(v_r, v_v);
         e.r += e_o * light.direction_real.w * v_r;
     }
-    let probe = select(vec3f(0.0), env_irradiance_at(frame, s.normal), params.info.w == 1u);
+    let single = (params.info.w & VOLUME_SINGLE_BOUNCE) != 0u;
+    let probe = select(vec3f(0.0), env_irradiance_at(frame, s.normal), single);
     return Radiance(s.albedo / PI * (e.rv + probe), s.albedo / PI * (e.r + probe));
 }
 
@@ -67,9 +69,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let real = voxels[index * 2u];
     let virt = voxels[index * 2u + 1u];
     if (real != 0u) {
-        let lit = first_bounce(voxel_surface(real - 1u, centre));
+        let s = voxel_surface(real - 1u, centre);
+        let lit = first_bounce(s);
         rv = vec4f(lit.rv, 1.0);
         r = vec4f(lit.r, 1.0);
+        if ((params.info.w & VOLUME_SINGLE_BOUNCE) != 0u) {
+            // The last bounce: real voxels the camera sees take the photo's light.
+            let seen = with_photo(rv, r, s);
+            rv = seen[0];
+            r = seen[1];
+        }
     }
     if (virt != 0u) {
         rv = vec4f(first_bounce(voxel_surface(virt - 1u, centre)).rv, 1.0);

@@ -78,6 +78,10 @@ pub struct DvctMethod {
     shadows: ShadowSettings,
     stale_voxels: bool,
     stale_light: bool,
+    /// The photo or the camera changed: the last bounce takes the photo's light again.
+    stale_photo: bool,
+    /// `dvct.photo_voxels`.
+    photo_voxels: bool,
 }
 
 /// Builds the method (the registry's `build`).
@@ -129,7 +133,7 @@ impl DvctMethod {
 
     /// Builds every pass for the session of `inputs`.
     pub fn new(inputs: &MethodInputs) -> Self {
-        let MethodInputs { ctx, session, scene, frame_uniforms, shadow_maps, .. } = *inputs;
+        let MethodInputs { ctx, session, scene, frame_uniforms, shadow_maps, gbuffer, photo, .. } = *inputs;
         let device = &ctx.device;
         let settings = &session.settings.dvct;
         let cs = wgpu::ShaderStages::COMPUTE;
@@ -190,10 +194,24 @@ impl DvctMethod {
         let mut entries = GpuProbe::layout_entries(cs).to_vec();
         entries.extend(GpuMaterials::texture_entries(4, cs));
         entries.push(bind::uniform(7, cs));
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let d2 = wgpu::TextureViewDimension::D2;
+        entries.extend([
+            bind::texture(8, cs, unfilterable, d2),
+            bind::texture(9, cs, unfilterable, d2),
+            bind::texture(10, cs, wgpu::TextureSampleType::Uint, d2),
+            bind::texture(11, cs, unfilterable, d2),
+        ]);
         let probe_textures_layout = bind::layout(device, "dvct/probe_textures_layout", &entries);
         let mut resources = scene.probe.resources().to_vec();
         resources.extend(scene.materials.texture_resources());
         resources.push(frame_uniforms.as_entire_binding());
+        resources.extend([
+            TextureView(&gbuffer.depth_motion.view),
+            TextureView(&gbuffer.normal_roughness.view),
+            TextureView(&gbuffer.flags.view),
+            TextureView(&photo.view),
+        ]);
         let probe_textures_group = bind::group(device, "dvct/probe_textures_group", &probe_textures_layout, &resources);
 
         // First bounce.
@@ -342,6 +360,8 @@ impl DvctMethod {
             shadows: session.settings.shadows,
             stale_voxels: true,
             stale_light: true,
+            stale_photo: false,
+            photo_voxels: settings.photo_voxels,
         }
     }
 
@@ -395,6 +415,9 @@ impl LightTransport for DvctMethod {
             self.stale_voxels = true;
         }
         self.stale_light |= self.stale_voxels || change.moved_light_layers.is_some();
+        // The photo's light in the real voxels (photo.wgsl) follows the photo and what the
+        // camera sees: the last bounce is lit again.
+        self.stale_photo |= self.photo_voxels && (change.photo_changed || change.camera_moved);
     }
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
@@ -410,17 +433,21 @@ impl LightTransport for DvctMethod {
                 }
             });
         }
-        if std::mem::take(&mut self.stale_light) {
+        let stale_photo = std::mem::take(&mut self.stale_photo);
+        let stale_light = std::mem::take(&mut self.stale_light);
+        // The first bounce when the scene's light changed, or when it is the last and the photo
+        // did; the second (if any) after either.
+        if stale_light || (stale_photo && self.bounce.is_empty()) {
             rec.compute(Self::LIGHT_LABEL, |pass| {
                 self.record_voxel_passes(pass, &self.light);
                 self.record_mips(pass, &self.first_mips);
             });
-            if !self.bounce.is_empty() {
-                rec.compute(Self::BOUNCE_LABEL, |pass| {
-                    self.record_voxel_passes(pass, &self.bounce);
-                    self.record_mips(pass, &self.second_mips);
-                });
-            }
+        }
+        if (stale_light || stale_photo) && !self.bounce.is_empty() {
+            rec.compute(Self::BOUNCE_LABEL, |pass| {
+                self.record_voxel_passes(pass, &self.bounce);
+                self.record_mips(pass, &self.second_mips);
+            });
         }
         rec.compute(Self::LABEL, |pass| {
             self.trace.record(pass);
@@ -461,6 +488,7 @@ pub const LIGHT_SHADER: &str = wgsl!(
     "../../../shaders/lib/shadow.wgsl",
     "volume.wgsl",
     "surface.wgsl",
+    "photo.wgsl",
     "light.wgsl",
 );
 
@@ -477,6 +505,7 @@ pub const BOUNCE_SHADER: &str = wgsl!(
     "../../../shaders/lib/sampling.wgsl",
     "volume.wgsl",
     "surface.wgsl",
+    "photo.wgsl",
     "cones.wgsl",
     "bounce.wgsl",
 );

@@ -3,6 +3,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
+use mrshade_core::settings::DvctSettings;
 
 /// Mirrors `VolumeParams` in volume.wgsl.
 #[repr(C)]
@@ -10,11 +11,18 @@ use glam::{UVec4, Vec4};
 pub struct VolumeParams {
     /// xyz: world position of the lower corner; w: voxel side (m).
     pub origin: Vec4,
-    /// Voxels per side, mip levels, triangles, unused.
+    /// Voxels per side, mip levels, triangles, [`flags`].
     pub info: UVec4,
     /// Diffuse cone aperture, pixels per side of a trace texel (texel.wgsl), the pixels' and the
     /// second bounce's cone sample spacing (cones.wgsl).
     pub cone: Vec4,
+}
+
+/// `VolumeParams.info.w` of `settings` (photo.wgsl's bits): 1 when the first bounce is the
+/// last (it then takes the probe's light), 2 when the real voxels the camera sees take the
+/// photo's light.
+pub fn flags(settings: &DvctSettings) -> u32 {
+    (settings.bounces == 1) as u32 | (settings.photo_voxels as u32) << 1
 }
 
 /// Format of the volumes: premultiplied radiance and opacity.

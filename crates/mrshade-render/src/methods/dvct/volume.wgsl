@@ -4,7 +4,8 @@
 struct VolumeParams {
     // xyz: world position of the volume's lower corner; w: voxel side (m)
     origin: vec4f,
-    // voxels per side, mip levels, triangles, 1 if the first bounce takes the probe's light
+    // voxels per side, mip levels, triangles, bits: VOLUME_SINGLE_BOUNCE (the first bounce is
+    // the last and takes the probe's light), VOLUME_PHOTO (photo.wgsl)
     info: vec4u,
     // diffuse cone aperture (diameter / length), pixels per side of a trace texel (texel.wgsl),
     // the pixels' and the second bounce's cone sample spacing (cones.wgsl)
