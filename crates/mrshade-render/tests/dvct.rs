@@ -357,3 +357,37 @@ fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own()
     let mean_own = own.iter().sum::<Vec3>() / own.len() as f32;
     assert!((mean_own.x - mean_own.z).abs() < 0.05 * mean_own.x, "without the photo the voxels hold {mean_own}");
 }
+
+#[test]
+fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_through_the_maps() {
+    // The same sun over a real floor, the cube now virtual: the floor in its sun shadow keeps
+    // only the sky's share of the probe in L_rv (the answer's sharp shadow; the nine cones alone
+    // leave a faint one), the floor beyond it nearly all.
+    let floor_visibility = |probe_lights: u32| {
+        let mut s = Setup::top_down(48);
+        s.probe = Some([0.02, 0.02, 0.02]);
+        s.sun = Some([200.0, 200.0, 200.0]);
+        s.plane(0.5, 0.0, 0.5, true).cube([0.0, 0.05, -0.1], 0.05, false);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("extent = 4.0\nprobe_lights = {probe_lights}\ntrace_block = 1\n");
+        let r = s.render();
+        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let at = |target: Vec3| {
+            let (x, y) = (0..48 * 48)
+                .map(|i| (i % 48, i / 48))
+                .min_by_key(|&(x, y)| (r.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
+                .unwrap();
+            let i = (y * 48 + x) as usize;
+            (visibility.rv[i][0], visibility.r[i][0])
+        };
+        (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09)))
+    };
+    let ((shadow_rv, shadow_r), (lit_rv, _)) = floor_visibility(32);
+    eprintln!("maps: in the sun shadow {shadow_rv:.3} (real-only {shadow_r:.3}), beyond it {lit_rv:.3}");
+    assert!(shadow_r > 0.8, "nothing real shadows the floor: {shadow_r:.3}");
+    assert!(shadow_rv < 0.2 && lit_rv > 0.8, "in the shadow {shadow_rv:.3}, beyond it {lit_rv:.3}");
+    let ((cones_shadow, _), _) = floor_visibility(0);
+    eprintln!("cones alone: in the sun shadow {cones_shadow:.3}");
+    assert!(cones_shadow > shadow_rv + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
+}
