@@ -310,16 +310,30 @@ fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own()
     // A real floor under a virtual cube, seen from above, with a photo of one colour: the floor's
     // voxels the camera sees hold the photo's radiance in the real-only volume (photo / exposure,
     // spec §2.11's (T_μ² + T_μ)·L_e ≈ B); those under the cube, which the camera does not see,
-    // keep their own light (the lamp's, far from the photo's colour); with
-    // `dvct.photo_voxels = false` every voxel keeps its own.
-    let floor_voxels = |photo_voxels: bool| {
+    // keep their own light (the lamp's, far from the photo's colour); a stream's next photo is
+    // in them after its frame (the photo pass alone); with `dvct.photo_voxels = false` every
+    // voxel keeps its own.
+    let photo_a = [200, 150, 100];
+    let photo_b = [60, 120, 220];
+    let floor_voxels = |photo_voxels: bool, next_photo: Option<[u8; 3]>| {
         let mut s = Setup::top_down(32);
-        s.photo = Box::new(|_, _| [200, 150, 100]);
+        s.photo = Box::new(move |_, _| photo_a);
         s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
         s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
         dvct(&mut s, 32);
         s.extra_toml += &format!("photo_voxels = {photo_voxels}\n");
-        let r = s.render();
+        let mut r = s.render();
+        if let Some(rgb) = next_photo {
+            let (w, h) = (r.session.output.width, r.session.output.height);
+            let texels: Vec<u8> = (0..w * h).flat_map(|_| rgb).collect();
+            let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&texels, (w, h));
+            let inputs = mrshade_render::FrameInputs {
+                photo: Some(&packed),
+                ..mrshade_render::FrameInputs::camera(r.renderer.session_camera())
+            };
+            let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
+            r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
+        }
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let params = method.params();
         let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
@@ -345,15 +359,23 @@ fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own()
         assert!(seen.len() > 100 && hidden.len() > 50, "{} seen, {} hidden floor voxels", seen.len(), hidden.len());
         (seen, hidden)
     };
-    let photo = Vec3::new(200.0, 150.0, 100.0).map(|c| mrshade_core::color::srgb_to_linear(c / 255.0));
-    let (seen, hidden) = floor_voxels(true);
-    for l in &seen {
-        assert!((*l - photo).abs().max_element() < 2e-3 * photo.x, "a seen voxel holds {l}, the photo {photo}");
-    }
+    let linear = |rgb: [u8; 3]| Vec3::from(rgb.map(|c| mrshade_core::color::srgb_to_linear(c as f32 / 255.0)));
+    let holds = |voxels: &[Vec3], photo: Vec3| {
+        for l in voxels {
+            assert!(
+                (*l - photo).abs().max_element() < 2e-3 * photo.max_element(),
+                "a seen voxel holds {l}, the photo {photo}"
+            );
+        }
+    };
+    let (seen, hidden) = floor_voxels(true, None);
+    holds(&seen, linear(photo_a));
     let mean_hidden = hidden.iter().sum::<Vec3>() / hidden.len() as f32;
     // The lamp's light on a grey floor is grey: nothing like the photo's orange.
     assert!((mean_hidden.x - mean_hidden.z).abs() < 0.05 * mean_hidden.x, "hidden voxels hold {mean_hidden}");
-    let (own, _) = floor_voxels(false);
+    let (seen, _) = floor_voxels(true, Some(photo_b));
+    holds(&seen, linear(photo_b));
+    let (own, _) = floor_voxels(false, None);
     let mean_own = own.iter().sum::<Vec3>() / own.len() as f32;
     assert!((mean_own.x - mean_own.z).abs() < 0.05 * mean_own.x, "without the photo the voxels hold {mean_own}");
 }

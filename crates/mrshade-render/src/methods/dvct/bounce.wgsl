@@ -3,7 +3,7 @@
 // cones of its surface and adds ρ/π·E to its first-bounce radiance, into the volumes the
 // pixels' cones then read. The probe's light reaches a voxel here, shadowed by the same
 // cones (the first bounce left it out: unshadowed, it lit the inside of a closed box). Real
-// voxels the camera sees then take the photo's light (photo.wgsl).
+// voxels the camera sees then take the photo's light in a pass of its own (photo_pass.wgsl).
 
 @group(0) @binding(0) var<uniform> params: VolumeParams;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
@@ -46,9 +46,6 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         let e = gather_diffuse(s.position, s.normal, bounce_spacing());
         rv += vec4f(s.albedo / PI * (e.rv + e.env_rv), 0.0);
         r += vec4f(s.albedo / PI * (e.r + e.env_r), 0.0);
-        let seen = with_photo(rv, r, s);
-        rv = seen[0];
-        r = seen[1];
     }
     if (virt != 0u) {
         let s = voxel_surface(virt - 1u, centre);

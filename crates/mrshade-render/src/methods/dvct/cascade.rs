@@ -4,7 +4,7 @@
 //! `dvct.outer_resolution` voxels per side, that cones go on through when they leave the first
 //! (cones.wgsl).
 
-use super::volume::{self, VolumePair, VolumeParams, levels};
+use super::volume::{self, RawPair, VolumePair, VolumeParams, levels};
 use crate::methods::around::place;
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::settings::DvctSettings;
@@ -28,6 +28,8 @@ pub struct Cascade {
     /// The first bounce's volumes and, with `dvct.bounces` = 2, the second's.
     pub first: VolumePair,
     pub second: Option<VolumePair>,
+    /// With two bounces and `dvct.photo_voxels`: the second bounce's light before the photo's.
+    pub raw: Option<RawPair>,
 }
 
 impl Cascade {
@@ -66,7 +68,9 @@ impl Cascade {
         });
         let first = VolumePair::new(device, &format!("{label}/first_bounce"), res);
         let second = (settings.bounces >= 2).then(|| VolumePair::new(device, &format!("{label}/second_bounce"), res));
-        Self { params, params_buffer, extent, voxels, voxel_words, first, second }
+        let raw = (second.is_some() && settings.photo_voxels)
+            .then(|| RawPair::new(device, &format!("{label}/second_bounce_raw"), res));
+        Self { params, params_buffer, extent, voxels, voxel_words, first, second, raw }
     }
 
     /// Voxels per side.

@@ -17,7 +17,7 @@ mod cascade;
 mod pixels;
 mod volume;
 
-pub use volume::{Volume, VolumePair, VolumeParams, levels};
+pub use volume::{RawPair, Volume, VolumePair, VolumeParams, levels};
 
 use cascade::{Cascade, VOXEL_BYTES};
 
@@ -61,6 +61,9 @@ pub struct DvctMethod {
     light: Vec<VoxelPass>,
     /// The second bounce, per cascade (`dvct.bounces` = 2).
     bounce: Vec<VoxelPass>,
+    /// The photo's light in the second bounce's real voxels, per cascade (`dvct.photo_voxels`
+    /// with two bounces; with one the light pass takes it).
+    photo: Vec<VoxelPass>,
     mips: wgpu::ComputePipeline,
     /// Per volume pair (first bounces, then second bounces, cascade by cascade), per level from
     /// 1 and solution: the group and the level's side.
@@ -110,10 +113,13 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
     }
     let voxels: u64 = sides.iter().map(|r| r.pow(3) * VOXEL_BYTES).sum();
     let light: u64 = sides.iter().map(|&r| d.bounces as u64 * VolumePair::bytes(r as u32)).sum();
+    let raw: u64 =
+        if d.bounces >= 2 && d.photo_voxels { sides.iter().map(|&r| RawPair::bytes(r as u32)).sum() } else { 0 };
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
         ("dvct voxels (dvct.resolution³, dvct.outer_resolution³)", voxels),
         ("dvct light volumes (voxels × bounces per volume, with mips)", light),
+        ("dvct second bounce before the photo's light (dvct.photo_voxels)", raw),
         (
             "dvct probe-light maps (2 × dvct.probe_lights × dvct.probe_map_resolution²)",
             super::rsm::bytes(2 * settings.dvct.probe_lights as u64, settings.dvct.probe_map_resolution),
@@ -128,6 +134,8 @@ impl DvctMethod {
     pub const LIGHT_LABEL: &'static str = "dvct-light";
     /// GPU timing label of the second bounce and its mipmaps.
     pub const BOUNCE_LABEL: &'static str = "dvct-bounce";
+    /// GPU timing label of the photo's light in the second bounce's voxels and their mipmaps.
+    pub const PHOTO_LABEL: &'static str = "dvct-photo";
     /// GPU timing label of the pixels' cones.
     pub const LABEL: &'static str = "dvct-cones";
 
@@ -298,13 +306,53 @@ impl DvctMethod {
             );
             for c in &cascades {
                 let second = c.second.as_ref().expect("two bounces");
+                // Into the volumes the cones read, or before the photo's light (photo pass).
+                let out = match &c.raw {
+                    Some(raw) => {
+                        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+                        let (rv, r) = (view(&raw.rv), view(&raw.r));
+                        bind::group(
+                            device,
+                            "dvct/second_bounce_raw_group",
+                            &out_layout,
+                            &[TextureView(&rv), TextureView(&r)],
+                        )
+                    }
+                    None => out_group(second, "dvct/second_bounce_out_group"),
+                };
                 let groups = vec![
                     surface_group(c),
                     volume_group(&c.first, &outermost.first, &outermost.params_buffer, "dvct/first_bounce_group"),
                     probe_textures_group.clone(),
-                    out_group(second, "dvct/second_bounce_out_group"),
+                    out,
                 ];
                 bounce.push((pipeline.clone(), groups));
+            }
+        }
+
+        // The photo's light in the second bounce's real voxels (photo_pass.wgsl).
+        let mut photo_passes = Vec::new();
+        if cascades.iter().any(|c| c.raw.is_some()) {
+            let unfiltered = wgpu::TextureSampleType::Float { filterable: false };
+            let raw_3d = |i| bind::texture(i, cs, unfiltered, wgpu::TextureViewDimension::D3);
+            let raw_layout = bind::layout(device, "dvct/raw_layout", &[raw_3d(0), raw_3d(1)]);
+            let pipeline = compute_pipeline(
+                device,
+                "dvct/photo",
+                PHOTO_SHADER,
+                &[&surface_layout, &raw_layout, &probe_textures_layout, &out_layout],
+            );
+            for c in &cascades {
+                let (Some(raw), Some(second)) = (&c.raw, &c.second) else { continue };
+                let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+                let (rv, r) = (view(&raw.rv), view(&raw.r));
+                let groups = vec![
+                    surface_group(c),
+                    bind::group(device, "dvct/raw_group", &raw_layout, &[TextureView(&rv), TextureView(&r)]),
+                    probe_textures_group.clone(),
+                    out_group(second, "dvct/photo_out_group"),
+                ];
+                photo_passes.push((pipeline.clone(), groups));
             }
         }
 
@@ -350,6 +398,7 @@ impl DvctMethod {
             voxelize_groups,
             light,
             bounce,
+            photo: photo_passes,
             mips,
             first_mips,
             second_mips,
@@ -435,17 +484,26 @@ impl LightTransport for DvctMethod {
         }
         let stale_photo = std::mem::take(&mut self.stale_photo);
         let stale_light = std::mem::take(&mut self.stale_light);
-        // The first bounce when the scene's light changed, or when it is the last and the photo
-        // did; the second (if any) after either.
+        // The first bounce when the scene's light changed, or when it is the only one and the
+        // photo did (it takes the photo's light itself); the second when the light changed; the
+        // photo pass after either, or alone when only the photo or the camera did.
         if stale_light || (stale_photo && self.bounce.is_empty()) {
             rec.compute(Self::LIGHT_LABEL, |pass| {
                 self.record_voxel_passes(pass, &self.light);
                 self.record_mips(pass, &self.first_mips);
             });
         }
-        if (stale_light || stale_photo) && !self.bounce.is_empty() {
+        if stale_light && !self.bounce.is_empty() {
             rec.compute(Self::BOUNCE_LABEL, |pass| {
                 self.record_voxel_passes(pass, &self.bounce);
+                if self.photo.is_empty() {
+                    self.record_mips(pass, &self.second_mips);
+                }
+            });
+        }
+        if (stale_light || stale_photo) && !self.photo.is_empty() {
+            rec.compute(Self::PHOTO_LABEL, |pass| {
+                self.record_voxel_passes(pass, &self.photo);
                 self.record_mips(pass, &self.second_mips);
             });
         }
@@ -505,9 +563,21 @@ pub const BOUNCE_SHADER: &str = wgsl!(
     "../../../shaders/lib/sampling.wgsl",
     "volume.wgsl",
     "surface.wgsl",
-    "photo.wgsl",
     "cones.wgsl",
     "bounce.wgsl",
+);
+
+/// The photo pass's module (after the second bounce).
+pub const PHOTO_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/instance.wgsl",
+    "../../../shaders/lib/triangles.wgsl",
+    "../../../shaders/lib/material_textures.wgsl",
+    "volume.wgsl",
+    "surface.wgsl",
+    "photo.wgsl",
+    "photo_pass.wgsl",
 );
 
 /// The mipmap module.

@@ -6,8 +6,9 @@
 // between the box's walls many times); the cones of the virtual objects and of the real pixels
 // around them then see the walls and the desk as bright as the camera does. Voxels the camera
 // does not see (behind a real or a virtual surface, outside the frustum, the far side of a
-// wall) keep their computed light. Bound by the light and bounce passes in group 2 with the
-// probe; applied by the last of them (settings `dvct.photo_voxels`, VolumeParams.info.w).
+// wall) keep their computed light. Bound in group 2 with the probe; applied by the light pass
+// when its bounce is the only one, else by the photo pass after the second (photo_pass.wgsl;
+// settings `dvct.photo_voxels`, VolumeParams.info.w).
 
 @group(2) @binding(8) var gbuffer_depth_motion: texture_2d<f32>;
 @group(2) @binding(9) var gbuffer_normal_roughness: texture_2d<f32>;

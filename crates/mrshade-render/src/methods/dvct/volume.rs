@@ -44,22 +44,46 @@ pub struct Volume {
     pub axes: [wgpu::Texture; 3],
 }
 
+/// A cubic 3D texture of the volumes' format, `side` voxels and `levels` levels.
+fn volume_texture(device: &wgpu::Device, name: &str, side: u32, levels: u32) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(name),
+        size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: side },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D3,
+        format: FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+/// A bounce's light of both solutions before the photo's (photo_pass.wgsl), one level each.
+pub struct RawPair {
+    /// Real+virtual.
+    pub rv: wgpu::Texture,
+    /// Real-only.
+    pub r: wgpu::Texture,
+}
+
+impl RawPair {
+    /// Two `resolution`³ textures, labelled `<label>/rv` and `<label>/r`.
+    pub fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
+        let texture = |s: &str| volume_texture(device, &format!("{label}/{s}"), resolution, 1);
+        Self { rv: texture("rv"), r: texture("r") }
+    }
+
+    /// Bytes of both.
+    pub fn bytes(resolution: u32) -> u64 {
+        2 * (resolution as u64).pow(3) * 8
+    }
+}
+
 impl Volume {
     fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
-        let texture = |name: String, side: u32, levels: u32| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&name),
-                size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: side },
-                mip_level_count: levels,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D3,
-                format: FORMAT,
-                usage: wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
-        };
+        let texture = |name: String, side: u32, levels: u32| volume_texture(device, &name, side, levels);
         let chain = levels(resolution).saturating_sub(1).max(1);
         let axis = |a: &str| texture(format!("{label}/{a}"), (resolution / 2).max(1), chain);
         Self { base: texture(format!("{label}/base"), resolution, 1), axes: [axis("x"), axis("y"), axis("z")] }

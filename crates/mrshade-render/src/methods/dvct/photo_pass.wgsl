@@ -1,0 +1,42 @@
+// The photo's light in the real voxels (photo.wgsl) as a pass of its own after the second
+// bounce: each voxel's light as the bounce left it (`raw_*`), with the photo's in place of a
+// seen real surface's own, into the volumes the pixels' cones read. A new photo or camera
+// (footage, a stream) runs this pass and the mipmaps again, not the bounce.
+
+@group(0) @binding(0) var<uniform> params: VolumeParams;
+@group(0) @binding(1) var<storage, read> instances: array<Instance>;
+@group(0) @binding(2) var<storage, read> vertices: array<f32>;
+@group(0) @binding(3) var<storage, read> indices: array<u32>;
+@group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
+@group(0) @binding(5) var<storage, read> materials: array<Material>;
+@group(0) @binding(6) var<storage, read> voxels: array<u32>;
+
+@group(1) @binding(0) var raw_rv: texture_3d<f32>;
+@group(1) @binding(1) var raw_r: texture_3d<f32>;
+
+// Group 2: the material textures (surface.wgsl), the frame, the camera's view and the photo
+// (photo.wgsl); the probe's bindings 0–3 are not read here.
+@group(2) @binding(4) var textures_srgb: texture_2d_array<f32>;
+@group(2) @binding(5) var textures_linear: texture_2d_array<f32>;
+@group(2) @binding(6) var texture_sampler: sampler;
+@group(2) @binding(7) var<uniform> frame: Frame;
+
+@group(3) @binding(0) var out_rv: texture_storage_3d<rgba16float, write>;
+@group(3) @binding(1) var out_r: texture_storage_3d<rgba16float, write>;
+
+@compute @workgroup_size(4, 4, 4)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id >= vec3u(params.info.x))) { return; }
+    let index = voxel_index(id);
+    var rv = textureLoad(raw_rv, id, 0);
+    var r = textureLoad(raw_r, id, 0);
+    let real = voxels[index * 2u];
+    if (real != 0u) {
+        let seen = with_photo(rv, r, voxel_surface(real - 1u, voxel_centre(id)));
+        r = seen[1];
+        // A voxel that holds a virtual surface shows it in the real+virtual volume.
+        if (voxels[index * 2u + 1u] == 0u) { rv = seen[0]; }
+    }
+    textureStore(out_rv, id, rv);
+    textureStore(out_r, id, r);
+}
