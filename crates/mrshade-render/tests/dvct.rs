@@ -19,6 +19,16 @@ fn cube_surface_distance(p: Vec3, c: Vec3, h: f32) -> f32 {
     (outside + inside).abs()
 }
 
+/// Index of the pixel of a `size`² top-down render whose centre sees the floor (y = 0) nearest
+/// to `target`.
+fn floor_pixel(r: &common::Rendered, size: u32, target: Vec3) -> usize {
+    let (x, y) = (0..size * size)
+        .map(|i| (i % size, i / size))
+        .min_by_key(|&(x, y)| (r.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
+        .unwrap();
+    (y * size + x) as usize
+}
+
 #[test]
 fn a_voxelised_cube_is_a_closed_shell_one_voxel_thick() {
     let mut s = Setup::top_down(32);
@@ -287,13 +297,7 @@ fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
         let r = s.render();
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
-        let at = |target: Vec3| {
-            let (x, y) = (0..48 * 48)
-                .map(|i| (i % 48, i / 48))
-                .min_by_key(|&(x, y)| (r.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
-                .unwrap();
-            visibility.r[(y * 48 + x) as usize][0]
-        };
+        let at = |target: Vec3| visibility.r[floor_pixel(&r, 48, target)][0];
         // The shadow reaches from z = −0.05 to +0.05 (the cube is 0.1 high).
         (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.1)))
     };
@@ -396,11 +400,7 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_t
         let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
         let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
         let at = |target: Vec3| {
-            let (x, y) = (0..48 * 48)
-                .map(|i| (i % 48, i / 48))
-                .min_by_key(|&(x, y)| (r.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
-                .unwrap();
-            let i = (y * 48 + x) as usize;
+            let i = floor_pixel(&r, 48, target);
             (visibility.rv[i][0], visibility.r[i][0])
         };
         (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09)))

@@ -5,14 +5,6 @@
 // cones (the first bounce left it out: unshadowed, it lit the inside of a closed box). Real
 // voxels the camera sees then take the photo's light in a pass of its own (photo_pass.wgsl).
 
-@group(0) @binding(0) var<uniform> params: VolumeParams;
-@group(0) @binding(1) var<storage, read> instances: array<Instance>;
-@group(0) @binding(2) var<storage, read> vertices: array<f32>;
-@group(0) @binding(3) var<storage, read> indices: array<u32>;
-@group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
-@group(0) @binding(5) var<storage, read> materials: array<Material>;
-@group(0) @binding(6) var<storage, read> voxels: array<u32>;
-
 // Group 1: the volumes (cones.wgsl).
 
 @group(2) @binding(0) var env_radiance: texture_2d<f32>;

@@ -8,14 +8,6 @@
 // the differential"), with no RSM texels racing for a voxel. Premultiplied: rgb·α, α = 1.
 // With a single bounce, real voxels the camera sees then take the photo's light (photo.wgsl).
 
-@group(0) @binding(0) var<uniform> params: VolumeParams;
-@group(0) @binding(1) var<storage, read> instances: array<Instance>;
-@group(0) @binding(2) var<storage, read> vertices: array<f32>;
-@group(0) @binding(3) var<storage, read> indices: array<u32>;
-@group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
-@group(0) @binding(5) var<storage, read> materials: array<Material>;
-@group(0) @binding(6) var<storage, read> voxels: array<u32>;
-
 @group(1) @binding(0) var<uniform> frame: Frame;
 @group(1) @binding(1) var<uniform> shadow_params: ShadowParams;
 @group(1) @binding(2) var<storage, read> lights: array<Light>;

@@ -3,14 +3,6 @@
 // seen real surface's own, into the volumes the pixels' cones read. A new photo or camera
 // (footage, a stream) runs this pass and the mipmaps again, not the bounce.
 
-@group(0) @binding(0) var<uniform> params: VolumeParams;
-@group(0) @binding(1) var<storage, read> instances: array<Instance>;
-@group(0) @binding(2) var<storage, read> vertices: array<f32>;
-@group(0) @binding(3) var<storage, read> indices: array<u32>;
-@group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
-@group(0) @binding(5) var<storage, read> materials: array<Material>;
-@group(0) @binding(6) var<storage, read> voxels: array<u32>;
-
 @group(1) @binding(0) var raw_rv: texture_3d<f32>;
 @group(1) @binding(1) var raw_r: texture_3d<f32>;
 

@@ -1,8 +1,16 @@
 // The surface a voxel holds, from the triangle the voxelisation kept: the voxel centre's
 // closest point on the triangle, its shading normal and its diffuse albedo (base color
-// texture prefiltered over about a voxel). Bindings are declared by the including pass:
-// params, instances, vertices, indices, triangles, materials, voxels, textures_srgb,
-// textures_linear, texture_sampler.
+// texture prefiltered over about a voxel). Group 0 of the passes over the voxels (light,
+// bounce, photo) is theirs, declared here; the including pass declares textures_srgb,
+// textures_linear and texture_sampler.
+
+@group(0) @binding(0) var<uniform> params: VolumeParams;
+@group(0) @binding(1) var<storage, read> instances: array<Instance>;
+@group(0) @binding(2) var<storage, read> vertices: array<f32>;
+@group(0) @binding(3) var<storage, read> indices: array<u32>;
+@group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
+@group(0) @binding(5) var<storage, read> materials: array<Material>;
+@group(0) @binding(6) var<storage, read> voxels: array<u32>;
 
 struct VoxelSurface {
     position: vec3f,
