@@ -1,17 +1,20 @@
 //! Delta voxel cone tracing, the `dvct` method (Franke §2.13, [Fra14a]), its passes in the
 //! order of the spec's pseudo-code (§2.13.8): voxelise the real and virtual scene around the
 //! virtual content → inject the first bounce of both solutions per voxel → (a second bounce,
-//! gathered by cones per voxel) → 3D mipmaps → per-pixel cone tracing into the
-//! [`IndirectLight`] that direct lighting adds. Voxels and their light are redrawn only when
-//! geometry or a light moved; the cones are traced every frame.
+//! gathered by cones per voxel) → the photo's light in the real voxels the camera sees →
+//! 3D mipmaps → per-pixel cone tracing into the [`IndirectLight`] that direct lighting adds.
+//! Voxels and their light are redrawn only when geometry or a light moved, the photo's light
+//! when the photo or the camera did; the cones are traced every frame.
 //!
 //! Where it departs from the thesis, and why: the direct change T_Δ¹ comes from the frame's
 //! real-only and virtual-only shadow maps (exact, unbounded, never darkening a real shadow
 //! twice; spec §2.13.3's pitfall) instead of one shadow cone per light; the split injection is
 //! per voxel (each voxel lit through the shadow maps for both solutions) instead of per RSM
-//! texel with racing writes; a second bounce is injected (`dvct.bounces`); and the probe's
-//! light from its narrower lights is shadowed through their maps (`probe_maps`,
-//! `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl).
+//! texel with racing writes; a second bounce is injected (`dvct.bounces`); real voxels the
+//! camera sees take the photo's light (spec §2.11's B ≈ (T_μ² + T_μ)·L_e applied to the voxels,
+//! `dvct.photo_voxels`, photo.wgsl); and the probe's light from its narrower lights is shadowed
+//! through their maps (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones
+//! alone (gather.wgsl).
 
 mod cascade;
 mod pixels;
