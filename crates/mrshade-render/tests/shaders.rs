@@ -40,6 +40,7 @@ const MODULES: &[(&str, &str)] = &[
     ("dvct/voxelize", dvct::VOXELIZE_SHADER),
     ("dvct/light", dvct::LIGHT_SHADER),
     ("dvct/bounce", dvct::BOUNCE_SHADER),
+    ("dvct/photo", dvct::PHOTO_SHADER),
     ("dvct/mips", dvct::MIPS_SHADER),
     ("dvct/cones", dvct::GATHER_SHADER),
     ("dvct/resolve", dvct::RESOLVE_SHADER),

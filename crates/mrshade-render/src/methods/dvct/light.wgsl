@@ -67,7 +67,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         r = vec4f(lit.r, 1.0);
         if ((params.info.w & VOLUME_SINGLE_BOUNCE) != 0u) {
             // The last bounce: real voxels the camera sees take the photo's light.
-            let seen = with_photo(rv, r, s);
+            let seen = with_photo(rv, r, s.position, s.normal);
             rv = seen[0];
             r = seen[1];
         }

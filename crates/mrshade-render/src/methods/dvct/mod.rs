@@ -18,8 +18,10 @@
 
 mod cascade;
 mod pixels;
+mod shaders;
 mod volume;
 
+pub use shaders::*;
 pub use volume::{RawPair, Volume, VolumePair, VolumeParams, levels};
 
 use cascade::{Cascade, VOXEL_BYTES};
@@ -32,9 +34,9 @@ use crate::raster::Rasterizer;
 use crate::scene_gpu::{Geometry, GpuMaterials, GpuProbe};
 use anyhow::{Result, bail};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
+use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
 use mrshade_gpu::timing::{Dispatch, Recorder};
-use mrshade_gpu::{bind, wgsl};
 use wgpu::util::DeviceExt;
 
 /// The start of both groups over the triangles: the volume's uniform and the geometry.
@@ -84,7 +86,7 @@ pub struct DvctMethod {
     shadows: ShadowSettings,
     stale_voxels: bool,
     stale_light: bool,
-    /// The photo or the camera changed: the last bounce takes the photo's light again.
+    /// The photo or the camera changed: the photo's light goes into the voxels again.
     stale_photo: bool,
     /// `dvct.photo_voxels`.
     photo_voxels: bool,
@@ -312,13 +314,12 @@ impl DvctMethod {
                 // Into the volumes the cones read, or before the photo's light (photo pass).
                 let out = match &c.raw {
                     Some(raw) => {
-                        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-                        let (rv, r) = (view(&raw.rv), view(&raw.r));
+                        let [rv, r] = &raw.views;
                         bind::group(
                             device,
                             "dvct/second_bounce_raw_group",
                             &out_layout,
-                            &[TextureView(&rv), TextureView(&r)],
+                            &[TextureView(rv), TextureView(r)],
                         )
                     }
                     None => out_group(second, "dvct/second_bounce_out_group"),
@@ -347,11 +348,10 @@ impl DvctMethod {
             );
             for c in &cascades {
                 let (Some(raw), Some(second)) = (&c.raw, &c.second) else { continue };
-                let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-                let (rv, r) = (view(&raw.rv), view(&raw.r));
+                let [rv, r] = &raw.views;
                 let groups = vec![
                     surface_group(c),
-                    bind::group(device, "dvct/raw_group", &raw_layout, &[TextureView(&rv), TextureView(&r)]),
+                    bind::group(device, "dvct/raw_group", &raw_layout, &[TextureView(rv), TextureView(r)]),
                     probe_textures_group.clone(),
                     out_group(second, "dvct/photo_out_group"),
                 ];
@@ -468,7 +468,7 @@ impl LightTransport for DvctMethod {
         }
         self.stale_light |= self.stale_voxels || change.moved_light_layers.is_some();
         // The photo's light in the real voxels (photo.wgsl) follows the photo and what the
-        // camera sees: the last bounce is lit again.
+        // camera sees: the photo pass runs again (with one bounce, the light pass).
         self.stale_photo |= self.photo_voxels && (change.photo_changed || change.camera_moved);
     }
 
@@ -524,98 +524,3 @@ impl LightTransport for DvctMethod {
         self
     }
 }
-
-/// The voxelisation module (entry points `cs_main` and `clear`).
-pub const VOXELIZE_SHADER: &str = wgsl!(
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/instance.wgsl",
-    "../../../shaders/lib/triangles.wgsl",
-    "volume.wgsl",
-    "voxelize.wgsl",
-);
-
-/// The first bounce's module.
-pub const LIGHT_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/brdf.wgsl",
-    "../../../shaders/lib/dfg.wgsl",
-    "../../../shaders/lib/env.wgsl",
-    "../../../shaders/lib/instance.wgsl",
-    "../../../shaders/lib/triangles.wgsl",
-    "../../../shaders/lib/material_textures.wgsl",
-    "../../../shaders/lib/lights.wgsl",
-    "../../../shaders/lib/cube.wgsl",
-    "../../../shaders/lib/shadow.wgsl",
-    "volume.wgsl",
-    "surface.wgsl",
-    "photo.wgsl",
-    "light.wgsl",
-);
-
-/// The second bounce's module.
-pub const BOUNCE_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/brdf.wgsl",
-    "../../../shaders/lib/dfg.wgsl",
-    "../../../shaders/lib/env.wgsl",
-    "../../../shaders/lib/instance.wgsl",
-    "../../../shaders/lib/triangles.wgsl",
-    "../../../shaders/lib/material_textures.wgsl",
-    "../../../shaders/lib/sampling.wgsl",
-    "volume.wgsl",
-    "surface.wgsl",
-    "cones.wgsl",
-    "bounce.wgsl",
-);
-
-/// The photo pass's module (after the second bounce).
-pub const PHOTO_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/instance.wgsl",
-    "../../../shaders/lib/triangles.wgsl",
-    "../../../shaders/lib/material_textures.wgsl",
-    "volume.wgsl",
-    "surface.wgsl",
-    "photo.wgsl",
-    "photo_pass.wgsl",
-);
-
-/// The mipmap module.
-pub const MIPS_SHADER: &str = wgsl!("mips.wgsl");
-
-/// The pixels' cones module (once per trace texel).
-pub const GATHER_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/brdf.wgsl",
-    "../../../shaders/lib/gbuffer_pixel.wgsl",
-    "../../../shaders/lib/indirect_out.wgsl",
-    "../../../shaders/lib/dfg.wgsl",
-    "../../../shaders/lib/env.wgsl",
-    "../../../shaders/lib/sampling.wgsl",
-    "../../../shaders/lib/lights.wgsl",
-    "../../../shaders/lib/rsm_texel.wgsl",
-    "../../../shaders/lib/probe_maps.wgsl",
-    "volume.wgsl",
-    "texel.wgsl",
-    "cones.wgsl",
-    "gather.wgsl",
-);
-
-/// The per-pixel resolve of the traced cones.
-pub const RESOLVE_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/brdf.wgsl",
-    "../../../shaders/lib/gbuffer_pixel.wgsl",
-    "../../../shaders/lib/indirect_out.wgsl",
-    "../../../shaders/lib/dfg.wgsl",
-    "../../../shaders/lib/env.wgsl",
-    "../../../shaders/lib/geometry_weight.wgsl",
-    "volume.wgsl",
-    "texel.wgsl",
-    "resolve.wgsl",
-);

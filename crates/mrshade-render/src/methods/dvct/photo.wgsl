@@ -39,10 +39,11 @@ fn photo_radiance(p: vec3f, n: vec3f) -> vec4f {
 }
 
 // A real voxel's light (premultiplied, both solutions) with the photo's in place of its own
-// real-only light where the camera sees its surface `s`; `rv` keeps the virtual content's change.
-fn with_photo(rv: vec4f, r: vec4f, s: VoxelSurface) -> array<vec4f, 2> {
+// real-only light where the camera sees its surface at `p` (normal `n`); `rv` keeps the
+// virtual content's change.
+fn with_photo(rv: vec4f, r: vec4f, p: vec3f, n: vec3f) -> array<vec4f, 2> {
     if ((params.info.w & VOLUME_PHOTO) == 0u) { return array(rv, r); }
-    let b = photo_radiance(s.position, s.normal);
+    let b = photo_radiance(p, n);
     if (b.w == 0.0) { return array(rv, r); }
     return array(vec4f(max(b.rgb + rv.rgb - r.rgb, vec3f(0.0)), 1.0), vec4f(b.rgb, 1.0));
 }

@@ -6,11 +6,8 @@
 @group(1) @binding(0) var raw_rv: texture_3d<f32>;
 @group(1) @binding(1) var raw_r: texture_3d<f32>;
 
-// Group 2: the material textures (surface.wgsl), the frame, the camera's view and the photo
-// (photo.wgsl); the probe's bindings 0–3 are not read here.
-@group(2) @binding(4) var textures_srgb: texture_2d_array<f32>;
-@group(2) @binding(5) var textures_linear: texture_2d_array<f32>;
-@group(2) @binding(6) var texture_sampler: sampler;
+// Group 2: the frame, the G-buffer and the photo (photo.wgsl); the probe's and the material
+// textures' bindings 0–6 are not read here (the voxel's point is enough, not its albedo).
 @group(2) @binding(7) var<uniform> frame: Frame;
 
 @group(3) @binding(0) var out_rv: texture_storage_3d<rgba16float, write>;
@@ -24,7 +21,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     var r = textureLoad(raw_r, id, 0);
     let real = voxels[index * 2u];
     if (real != 0u) {
-        let seen = with_photo(rv, r, voxel_surface(real - 1u, voxel_centre(id)));
+        let d = load_triangle(real - 1u);
+        let at = voxel_point(d, instances[d.instance], voxel_centre(id));
+        let seen = with_photo(rv, r, at.position, at.normal);
         r = seen[1];
         // A voxel that holds a virtual surface shows it in the real+virtual volume.
         if (voxels[index * 2u + 1u] == 0u) { rv = seen[0]; }

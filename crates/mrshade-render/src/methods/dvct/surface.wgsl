@@ -1,8 +1,7 @@
-// The surface a voxel holds, from the triangle the voxelisation kept: the voxel centre's
-// closest point on the triangle, its shading normal and its diffuse albedo (base color
-// texture prefiltered over about a voxel). Group 0 of the passes over the voxels (light,
-// bounce, photo) is theirs, declared here; the including pass declares textures_srgb,
-// textures_linear and texture_sampler.
+// Where the surface a voxel holds lies, from the triangle the voxelisation kept: the voxel
+// centre's closest point on the triangle and its shading normal (voxel_surface.wgsl adds its
+// albedo). Group 0 of the passes over the voxels (light, bounce, photo) is theirs, declared
+// here.
 
 @group(0) @binding(0) var<uniform> params: VolumeParams;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
@@ -12,16 +11,17 @@
 @group(0) @binding(5) var<storage, read> materials: array<Material>;
 @group(0) @binding(6) var<storage, read> voxels: array<u32>;
 
-struct VoxelSurface {
+struct VoxelPoint {
     position: vec3f,
     normal: vec3f,
-    // Diffuse albedo ρ (the part of the base color that is not metal or transmitted).
-    albedo: vec3f,
+    // Barycentric weights of the point on the triangle.
+    weights: vec3f,
+    // World lengths of the triangle's edges from its first vertex.
+    edges: vec2f,
 }
 
-fn voxel_surface(triangle: u32, centre: vec3f) -> VoxelSurface {
-    let d = load_triangle(triangle);
-    let inst = instances[d.instance];
+// The point of triangle `d` (of instance `inst`) closest to the voxel centre `centre`.
+fn voxel_point(d: TriangleData, inst: Instance, centre: vec3f) -> VoxelPoint {
     var p: array<vec3f, 3>;
     for (var k = 0u; k < 3u; k++) {
         p[k] = (inst.world_from_object * vec4f(d.p[k], 1.0)).xyz;
@@ -41,20 +41,12 @@ fn voxel_surface(triangle: u32, centre: vec3f) -> VoxelSurface {
     b1 = clamp(b1, 0.0, 1.0);
     b2 = clamp(b2, 0.0, 1.0 - b1);
     let w = vec3f(1.0 - b1 - b2, b1, b2);
-    var s: VoxelSurface;
-    s.position = p[0] * w.x + p[1] * w.y + p[2] * w.z;
+    var out: VoxelPoint;
+    out.position = p[0] * w.x + p[1] * w.y + p[2] * w.z;
     let n = d.n[0] * w.x + d.n[1] * w.y + d.n[2] * w.z;
-    s.normal = normalize((inst.normal_from_object * vec4f(n, 0.0)).xyz);
-    if (dot(s.normal, s.normal) < 0.5 || any(s.normal != s.normal)) { s.normal = g; }
-    let uv = d.uv[0] * w.x + d.uv[1] * w.y + d.uv[2] * w.z;
-    // Texture footprint of a voxel: the triangle's texture extent per metre times a voxel.
-    let uv_per_metre = (length(d.uv[1] - d.uv[0]) + length(d.uv[2] - d.uv[0])) / max(sqrt(d00) + sqrt(d11), 1e-9);
-    let footprint = vec2f(uv_per_metre * voxel_side(), 0.0);
-    let m = materials[inst.info.x];
-    let bits = m.texture_info.y;
-    let base = m.base_color * sample_slot(true, m.texture_layers.x, bits, 0u, uv, footprint, footprint.yx, vec4f(1.0));
-    let mr = sample_slot(false, m.texture_layers.y, bits, 1u, uv, footprint, footprint.yx, vec4f(1.0));
-    let metallic = clamp(m.params.x * mr.b, 0.0, 1.0);
-    s.albedo = vpl_base_color(m, base.rgb, metallic) * (1.0 - metallic);
-    return s;
+    out.normal = normalize((inst.normal_from_object * vec4f(n, 0.0)).xyz);
+    if (dot(out.normal, out.normal) < 0.5 || any(out.normal != out.normal)) { out.normal = g; }
+    out.weights = w;
+    out.edges = vec2f(sqrt(d00), sqrt(d11));
+    return out;
 }

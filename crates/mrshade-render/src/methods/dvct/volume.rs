@@ -66,13 +66,17 @@ pub struct RawPair {
     pub rv: wgpu::Texture,
     /// Real-only.
     pub r: wgpu::Texture,
+    /// Views of `rv` and `r`: the bounce writes through them, the photo pass reads.
+    pub views: [wgpu::TextureView; 2],
 }
 
 impl RawPair {
     /// Two `resolution`³ textures, labelled `<label>/rv` and `<label>/r`.
     pub fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
         let texture = |s: &str| volume_texture(device, &format!("{label}/{s}"), resolution, 1);
-        Self { rv: texture("rv"), r: texture("r") }
+        let (rv, r) = (texture("rv"), texture("r"));
+        let views = [&rv, &r].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        Self { rv, r, views }
     }
 
     /// Bytes of both.
@@ -83,10 +87,10 @@ impl RawPair {
 
 impl Volume {
     fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
-        let texture = |name: String, side: u32, levels: u32| volume_texture(device, &name, side, levels);
         let chain = levels(resolution).saturating_sub(1).max(1);
-        let axis = |a: &str| texture(format!("{label}/{a}"), (resolution / 2).max(1), chain);
-        Self { base: texture(format!("{label}/base"), resolution, 1), axes: [axis("x"), axis("y"), axis("z")] }
+        let axis = |a: &str| volume_texture(device, &format!("{label}/{a}"), (resolution / 2).max(1), chain);
+        let base = volume_texture(device, &format!("{label}/base"), resolution, 1);
+        Self { base, axes: [axis("x"), axis("y"), axis("z")] }
     }
 
     /// Views for sampling: the base, then the three axis chains.

@@ -1,0 +1,31 @@
+// The surface a voxel holds (surface.wgsl's point) with its diffuse albedo: the base color
+// texture prefiltered over about a voxel. The including pass declares textures_srgb,
+// textures_linear and texture_sampler.
+
+struct VoxelSurface {
+    position: vec3f,
+    normal: vec3f,
+    // Diffuse albedo ρ (the part of the base color that is not metal or transmitted).
+    albedo: vec3f,
+}
+
+fn voxel_surface(triangle: u32, centre: vec3f) -> VoxelSurface {
+    let d = load_triangle(triangle);
+    let inst = instances[d.instance];
+    let at = voxel_point(d, inst, centre);
+    let w = at.weights;
+    var s: VoxelSurface;
+    s.position = at.position;
+    s.normal = at.normal;
+    let uv = d.uv[0] * w.x + d.uv[1] * w.y + d.uv[2] * w.z;
+    // Texture footprint of a voxel: the triangle's texture extent per metre times a voxel.
+    let uv_per_metre = (length(d.uv[1] - d.uv[0]) + length(d.uv[2] - d.uv[0])) / max(at.edges.x + at.edges.y, 1e-9);
+    let footprint = vec2f(uv_per_metre * voxel_side(), 0.0);
+    let m = materials[inst.info.x];
+    let bits = m.texture_info.y;
+    let base = m.base_color * sample_slot(true, m.texture_layers.x, bits, 0u, uv, footprint, footprint.yx, vec4f(1.0));
+    let mr = sample_slot(false, m.texture_layers.y, bits, 1u, uv, footprint, footprint.yx, vec4f(1.0));
+    let metallic = clamp(m.params.x * mr.b, 0.0, 1.0);
+    s.albedo = vpl_base_color(m, base.rgb, metallic) * (1.0 - metallic);
+    return s;
+}
