@@ -63,6 +63,44 @@ fn a_voxelised_cube_is_a_closed_shell_one_voxel_thick() {
 }
 
 #[test]
+fn a_voxel_that_holds_both_faces_of_a_thin_real_wall_keeps_the_one_facing_the_content() {
+    // A real wall 8 mm thick in voxels of 12.5 mm beside a virtual cube: where a voxel holds
+    // its inner face, it keeps that face (the side the content sees, lit and in the photo),
+    // not the outer one, which the highest triangle number picked here (the cuboid's −x face
+    // comes after its +x face): cornell's walls gathered dark.
+    let mut s = Setup::top_down(32);
+    s.cube([0.0, 0.1, 0.0], 0.1, false);
+    let m = s.gltf.material(mrshade_testkit::gltf::lambert("wall", [0.7; 3]));
+    let wall = s.gltf.mesh(&mrshade_testkit::gltf::cuboid([0.004, 0.08, 0.08]), Some(m), true);
+    s.gltf.node(
+        serde_json::json!({"name": "wall", "mesh": wall, "translation": [-0.15, 0.1, 0.0], "extras": {"real": true}}),
+    );
+    dvct(&mut s, 32);
+    let r = s.render();
+    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+    let params = method.params();
+    let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
+    let bytes = mrshade_gpu::readback::read_buffer(&r.ctx, method.voxels()).unwrap();
+    let words: &[u32] = bytemuck::cast_slice(&bytes);
+    let inner_face = -0.146;
+    let (mut checked, mut outer_kept) = (0, 0);
+    for i in 0..res * res * res {
+        let v = UVec3::new(i % res, (i / res) % res, i / (res * res));
+        let p = origin + (v.as_vec3() + 0.5) * voxel;
+        let holds_inner = (p.x - inner_face).abs() < 0.5 * voxel && (p.y - 0.1).abs() < 0.07 && p.z.abs() < 0.07;
+        if !holds_inner {
+            continue;
+        }
+        let real = words[2 * i as usize];
+        assert_ne!(real, 0, "the wall's voxel at {p} is empty");
+        checked += 1;
+        outer_kept += (real & 0x8000_0000 == 0) as u32;
+    }
+    assert!(checked >= 50, "{checked} voxels hold the inner face");
+    assert_eq!(outer_kept, 0, "{outer_kept} of {checked} voxels kept a face turned away from the content");
+}
+
+#[test]
 fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
     let mut s = Setup::top_down(48);
     s.probe = Some([0.8, 0.8, 0.8]);
@@ -242,9 +280,10 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
     // A cube on a floor under a lamp and the probe, traced per pixel and once per block: each
     // pixel takes the blocks' light of its own surface only (nothing across the cube's edges)
     // under its own material, so they agree closely everywhere. What differs follows the
-    // seams of the 32³ voxels, which single pixels show and blocks average (up to a tenth of
+    // seams of the 32³ voxels, which single pixels show and blocks average (up to an eighth of
     // the brightest indirect light with blocks 3.2 cm wide: 2 × 2 pixels of a 64² image, 4 × 4
-    // of a 128² one).
+    // of a 128² one; cones that start one voxel off the surface see its seams more sharply
+    // than the two voxels they started at before, 0.114 → 0.127 at the 99th percentile).
     let render = |size: u32, block: u32| {
         let mut s = Setup::top_down(size);
         s.probe = Some([0.8, 0.8, 0.8]);
@@ -275,7 +314,7 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
         );
         assert!(vis.0 < 0.01 && vis.1 < 0.05, "{block} × {block}: probe visibility: {vis:?}");
         assert!(
-            light.0 < 0.03 && light.1 < 0.12,
+            light.0 < 0.03 && light.1 < 0.14,
             "{block} × {block}: indirect light (share of its largest value): {light:?}"
         );
     }

@@ -30,7 +30,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let real = voxels[index * 2u];
     let virt = voxels[index * 2u + 1u];
     if (real != 0u) {
-        var s = voxel_surface(real - 1u, centre);
+        var s = voxel_surface(voxel_triangle(real), centre);
         // A real proxy's side that matters is the one facing the virtual content (the
         // volume's centre): a room's walls gather inward whichever way their normals point.
         let toward = params.origin.xyz + 0.5 * volume_side() - s.position;
@@ -40,7 +40,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         r += vec4f(s.albedo / PI * (e.r + e.env_r), 0.0);
     }
     if (virt != 0u) {
-        let s = voxel_surface(virt - 1u, centre);
+        let s = voxel_surface(voxel_triangle(virt), centre);
         let e = gather_diffuse(s.position, s.normal, bounce_spacing());
         rv = vec4f(first_rv.rgb + s.albedo / PI * (e.rv + e.env_rv), 1.0);
     }

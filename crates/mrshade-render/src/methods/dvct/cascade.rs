@@ -22,7 +22,7 @@ pub struct Cascade {
     pub params_buffer: wgpu::Buffer,
     /// Side as a multiple of the virtual content's largest bounding-box edge.
     extent: f32,
-    /// Per voxel: the real and the virtual triangle + 1 (0: empty).
+    /// Per voxel: the real and the virtual triangle kept (volume.wgsl's words; 0: empty).
     pub voxels: wgpu::Buffer,
     pub voxel_words: u32,
     /// The first bounce's volumes and, with `dvct.bounces` = 2, the second's.

@@ -61,7 +61,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let real = voxels[index * 2u];
     let virt = voxels[index * 2u + 1u];
     if (real != 0u) {
-        let s = voxel_surface(real - 1u, centre);
+        let s = voxel_surface(voxel_triangle(real), centre);
         let lit = first_bounce(s);
         rv = vec4f(lit.rv, 1.0);
         r = vec4f(lit.r, 1.0);
@@ -73,7 +73,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         }
     }
     if (virt != 0u) {
-        rv = vec4f(first_bounce(voxel_surface(virt - 1u, centre)).rv, 1.0);
+        rv = vec4f(first_bounce(voxel_surface(voxel_triangle(virt), centre)).rv, 1.0);
     }
     textureStore(out_rv, id, rv);
     textureStore(out_r, id, r);

@@ -21,7 +21,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     var r = textureLoad(raw_r, id, 0);
     let real = voxels[index * 2u];
     if (real != 0u) {
-        let d = load_triangle(real - 1u);
+        let d = load_triangle(voxel_triangle(real));
         let at = voxel_point(d, instances[d.instance], voxel_centre(id));
         let seen = with_photo(rv, r, at.position, at.normal);
         r = seen[1];

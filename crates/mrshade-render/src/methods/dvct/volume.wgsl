@@ -16,3 +16,9 @@ fn voxel_side() -> f32 { return params.origin.w; }
 fn volume_side() -> f32 { return params.origin.w * f32(params.info.x); }
 fn voxel_index(v: vec3u) -> u32 { return (v.z * params.info.x + v.y) * params.info.x + v.x; }
 fn voxel_centre(v: vec3u) -> vec3f { return params.origin.xyz + (vec3f(v) + 0.5) * voxel_side(); }
+
+// A voxel's word in the voxels buffer (voxelize.wgsl): 0 when it holds no surface of its
+// kind, else the kept triangle + 1 with VOXEL_FACES_CENTRE set when that triangle faces the
+// volume's centre.
+const VOXEL_FACES_CENTRE: u32 = 0x80000000u;
+fn voxel_triangle(word: u32) -> u32 { return (word & ~VOXEL_FACES_CENTRE) - 1u; }

@@ -2,15 +2,20 @@
 // Seidel [SS10]): each triangle is rasterised along its dominant axis, one workgroup per
 // triangle, into every voxel its plane crosses within a cell's column, with a conservative
 // coverage test (a thin wall leaves no holes). A voxel keeps one real and one virtual
-// triangle, the highest-numbered (atomicMax: the same every run); the light pass derives the
-// surface's point, normal and albedo from it. Occupancy is whether a triangle is kept.
+// triangle: one that faces the volume's centre before one that does not, then the
+// highest-numbered (atomicMax on the word of volume.wgsl: the same every run); the light pass
+// derives the surface's point, normal and albedo from it. Occupancy is whether a triangle is
+// kept. A real wall thinner than two voxels (cornell's, 1 cm in 6 mm voxels) puts its inner and
+// outer faces in the same voxels: the outer face, unlit and unseen by the camera, left them
+// dark where the virtual content's cones gather the wall's bounce (the side that faces the
+// centre is the content's).
 
 @group(0) @binding(0) var<uniform> params: VolumeParams;
 @group(0) @binding(1) var<storage, read> instances: array<Instance>;
 @group(0) @binding(2) var<storage, read> vertices: array<f32>;
 @group(0) @binding(3) var<storage, read> indices: array<u32>;
 @group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
-// Per voxel: the real triangle + 1, the virtual triangle + 1 (0: none).
+// Per voxel: the real and the virtual triangle kept (words of volume.wgsl; 0: none).
 @group(0) @binding(5) var<storage, read_write> voxels: array<atomic<u32>>;
 
 // `p` with the axis `axis` moved last: (u, v, w).
@@ -81,6 +86,8 @@ fn cs_main(
     if (any(lo > hi)) { return; }
     let size = vec2u(hi - lo) + 1u;
     let s = select(-1.0, 1.0, n.z >= 0.0);
+    let centre = 0.5 * res - (v[0] + v[1] + v[2]) / 3.0;
+    let word = (triangle + 1u) | select(0u, VOXEL_FACES_CENTRE, dot(normal, centre) > 0.0);
     // The plane w(u, v) and how much it rises across half a cell.
     let slope = -n.xy / n.z;
     let rise = 0.5 * (abs(slope.x) + abs(slope.y));
@@ -93,7 +100,7 @@ fn cs_main(
         let w1 = min(floor(min(w + rise, w_hi) + BOUNDARY_SLACK), res - 1.0);
         for (var z = w0; z <= w1; z += 1.0) {
             let voxel = vec3u(from_uvw(vec3f(cell, z), axis));
-            atomicMax(&voxels[voxel_index(voxel) * 2u + slot], triangle + 1u);
+            atomicMax(&voxels[voxel_index(voxel) * 2u + slot], word);
         }
     }
 }
