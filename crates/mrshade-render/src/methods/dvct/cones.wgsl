@@ -230,8 +230,15 @@ fn diffuse_cone(n: vec3f, k: u32) -> vec4f {
 fn cone_origin(p: vec3f, n: vec3f) -> vec3f { return p + n * (CONE_START_VOXELS * voxel_side()); }
 const CONE_START_VOXELS: f32 = 1.0;
 
-// Roughness of the probe lookup that stands for a diffuse cone's solid angle.
-const CONE_PROBE_ROUGHNESS: f32 = 0.7;
+// Roughness of the probe lookup that weighs a diffuse cone's visibility by the probe's light
+// in its direction: the widest of the prefiltered chain. The cones shadow the probe's broad
+// light (the maps of its lights take the narrow ones, gather.wgsl), and their visibility
+// ratio scales the whole probe's shading: weights that follow bright sources the cones cannot
+// resolve (a studio lamp behind a wall, which a cone's trilinear samples partly see through)
+// skewed it. Lookups at roughness 0.7 → 1: the six diffuse benchmark scenes' region FLIP
+// 0.1 – 5 % lower (desk-spot-real 0.105 → 0.100); the probe's irradiance as weights (the
+// smoothest) lost on cornell.
+const CONE_PROBE_ROUGHNESS: f32 = 1.0;
 
 // What the nine diffuse cones of a surface at `p` (normal `n`) gather: the irradiance of both
 // solutions' bounce light, and the probe's irradiance as each solution's cones let it through
