@@ -10,11 +10,12 @@
 //! real-only and virtual-only shadow maps (exact, unbounded, never darkening a real shadow
 //! twice; spec §2.13.3's pitfall) instead of one shadow cone per light; the split injection is
 //! per voxel (each voxel lit through the shadow maps for both solutions) instead of per RSM
-//! texel with racing writes; a second bounce is injected (`dvct.bounces`); real voxels the
-//! camera sees take the photo's light (spec §2.11's B ≈ (T_μ² + T_μ)·L_e applied to the voxels,
-//! `dvct.photo_voxels`, photo.wgsl); and the probe's light from its narrower lights is shadowed
-//! through their maps (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones
-//! alone (gather.wgsl).
+//! texel with racing writes; a voxel that holds both faces of a thin real wall keeps the one
+//! facing the content (voxelize.wgsl); a second bounce is injected (`dvct.bounces`); real
+//! voxels the camera sees take the photo's light (spec §2.11's B ≈ (T_μ² + T_μ)·L_e applied to
+//! the voxels, `dvct.photo_voxels`, photo.wgsl); and the probe's light from its narrower lights
+//! is shadowed through their maps (`probe_maps`, `dvct.probe_lights`) rather than by the nine
+//! wide cones alone (gather.wgsl).
 
 mod cascade;
 mod pixels;
