@@ -4,11 +4,47 @@ mod common;
 
 use common::Setup;
 use glam::{UVec3, Vec3};
+use mrshade_core::Differential;
 use mrshade_render::methods::dvct::DvctMethod;
 
 fn dvct(s: &mut Setup, resolution: u32) {
     s.top_toml = "method = \"dvct\"\n".into();
     s.extra_toml += &format!("[dvct]\nresolution = {resolution}\n");
+}
+
+/// The `dvct` method of a render.
+fn dvct_method(r: &common::Rendered) -> &DvctMethod {
+    r.renderer.method_as::<DvctMethod>().expect("the dvct method")
+}
+
+/// The probe's visibility per pixel of a `dvct` render (its AOVs), both solutions.
+fn probe_visibility(r: &common::Rendered) -> Differential<Vec<[f32; 3]>> {
+    dvct_method(r).indirect.read_probe_visibility(&r.ctx).unwrap()
+}
+
+/// Every voxel of the inner volume of a `dvct` render: its centre and its real and virtual
+/// words (volume.wgsl: the kept triangle + 1, 0 when it holds none).
+fn voxel_words(r: &common::Rendered) -> Vec<(Vec3, u32, u32)> {
+    let method = dvct_method(r);
+    let params = method.params();
+    let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
+    let bytes = mrshade_gpu::readback::read_buffer(&r.ctx, method.voxels()).unwrap();
+    let words: &[u32] = bytemuck::cast_slice(&bytes);
+    (0..res * res * res)
+        .map(|i| {
+            let v = UVec3::new(i % res, (i / res) % res, i / (res * res));
+            (origin + (v.as_vec3() + 0.5) * voxel, words[2 * i as usize], words[2 * i as usize + 1])
+        })
+        .collect()
+}
+
+/// A real floor under a dim sky with a small bright sun 45° up toward −z, seen from above.
+fn sun_over_floor() -> Setup {
+    let mut s = Setup::top_down(48);
+    s.probe = Some([0.02, 0.02, 0.02]);
+    s.sun = Some([200.0, 200.0, 200.0]);
+    s.plane(0.5, 0.0, 0.5, true);
+    s
 }
 
 /// Distance from `p` to the surface of the axis-aligned cube at `c` of half side `h`.
@@ -36,19 +72,13 @@ fn a_voxelised_cube_is_a_closed_shell_one_voxel_thick() {
     s.cube(centre.to_array(), half, false);
     dvct(&mut s, 32);
     let r = s.render();
-    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-    let params = method.params();
-    let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
+    let params = dvct_method(&r).params();
+    let (voxel, res) = (params.origin.w, params.info.x);
     // Twice the cube's edge, centred on it (spec §2.13.1).
     assert!((voxel * res as f32 - 4.0 * half).abs() < 1e-4, "side {}", voxel * res as f32);
-    let bytes = mrshade_gpu::readback::read_buffer(&r.ctx, method.voxels()).unwrap();
-    let words: &[u32] = bytemuck::cast_slice(&bytes);
     let (mut holes, mut strays, mut occupied) = (0, 0, 0);
-    for i in 0..res * res * res {
-        let v = UVec3::new(i % res, (i / res) % res, i / (res * res));
-        let p = origin + (v.as_vec3() + 0.5) * voxel;
+    for (p, real, virt) in voxel_words(&r) {
         let d = cube_surface_distance(p, centre, half) / voxel;
-        let (real, virt) = (words[2 * i as usize], words[2 * i as usize + 1]);
         assert_eq!(real, 0, "no real surface in this scene");
         occupied += (virt != 0) as u32;
         // A surface passing nearer a voxel's centre than half its side must mark it (a face
@@ -77,21 +107,14 @@ fn a_voxel_that_holds_both_faces_of_a_thin_real_wall_keeps_the_one_facing_the_co
     );
     dvct(&mut s, 32);
     let r = s.render();
-    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-    let params = method.params();
-    let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
-    let bytes = mrshade_gpu::readback::read_buffer(&r.ctx, method.voxels()).unwrap();
-    let words: &[u32] = bytemuck::cast_slice(&bytes);
+    let voxel = dvct_method(&r).params().origin.w;
     let inner_face = -0.146;
     let (mut checked, mut outer_kept) = (0, 0);
-    for i in 0..res * res * res {
-        let v = UVec3::new(i % res, (i / res) % res, i / (res * res));
-        let p = origin + (v.as_vec3() + 0.5) * voxel;
+    for (p, real, _) in voxel_words(&r) {
         let holds_inner = (p.x - inner_face).abs() < 0.5 * voxel && (p.y - 0.1).abs() < 0.07 && p.z.abs() < 0.07;
         if !holds_inner {
             continue;
         }
-        let real = words[2 * i as usize];
         assert_ne!(real, 0, "the wall's voxel at {p} is empty");
         checked += 1;
         outer_kept += (real & 0x8000_0000 == 0) as u32;
@@ -163,7 +186,7 @@ fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
     s.plane(2.0, 0.0, 0.8, true).cube([0.0, 0.1, 0.0], 0.1, false);
     dvct(&mut s, 32);
     let r = s.render();
-    let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+    let method = dvct_method(&r);
     let res = method.params().info.x;
     for level in 1..mrshade_render::methods::dvct::levels(res) {
         let side = res >> level;
@@ -223,8 +246,7 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
         dvct(&mut s, 32);
         s.extra_toml += &format!("sample_spacing = {spacing}\n");
         let r = s.render();
-        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let visibility = probe_visibility(&r);
         let (mut error, mut count) = (0.0, 0);
         for x in 0..48 {
             let p = r.world_on_plane(x, 24, 0.0);
@@ -261,8 +283,7 @@ fn real_surfaces_beyond_the_volume_hide_the_probe_through_the_outer_volume() {
         // (its lights' maps would take over where they cover the floor).
         s.extra_toml += &format!("outer_scale = {outer_scale}\ntrace_block = 1\nprobe_lights = 0\n");
         let r = s.render();
-        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let visibility = probe_visibility(&r);
         // The floor pixel nearest x = 0.08 m on the middle row: inside the inner volume (±0.1 m).
         let x = (0..48).min_by_key(|&x| ((r.world_on_plane(x, 24, 0.0).x - 0.08).abs() * 1e4) as u32).unwrap();
         let p = r.world_on_plane(x, 24, 0.0);
@@ -292,9 +313,9 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
         dvct(&mut s, 32);
         s.extra_toml += &format!("trace_block = {block}\n");
         let r = s.render();
-        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let method = dvct_method(&r);
         let light = method.indirect.read_light(&r.ctx).unwrap().rv;
-        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap().rv;
+        let visibility = probe_visibility(&r).rv;
         (light, visibility)
     };
     for (size, block) in [(64, 2), (128, 4)] {
@@ -327,15 +348,12 @@ fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
     // shadow keeps only the sky's share of the probe, the floor beyond it nearly all. The
     // nine 60° cones alone (`probe_lights = 0`) blur the sun's shadow away.
     let floor_visibility = |probe_lights: u32| {
-        let mut s = Setup::top_down(48);
-        s.probe = Some([0.02, 0.02, 0.02]);
-        s.sun = Some([200.0, 200.0, 200.0]);
-        s.plane(0.5, 0.0, 0.5, true).cube([0.0, 0.05, -0.1], 0.05, true).cube([0.1, 0.04, 0.05], 0.04, false);
+        let mut s = sun_over_floor();
+        s.cube([0.0, 0.05, -0.1], 0.05, true).cube([0.1, 0.04, 0.05], 0.04, false);
         dvct(&mut s, 32);
         s.extra_toml += &format!("probe_lights = {probe_lights}\ntrace_block = 1\n");
         let r = s.render();
-        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let visibility = probe_visibility(&r);
         let at = |target: Vec3| visibility.r[floor_pixel(&r, 48, target)][0];
         // The shadow reaches from z = −0.05 to +0.05 (the cube is 0.1 high).
         (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.1)))
@@ -377,7 +395,7 @@ fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own()
             let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
             r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
         }
-        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
+        let method = dvct_method(&r);
         let params = method.params();
         let (origin, voxel, res) = (params.origin.truncate(), params.origin.w, params.info.x);
         let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, &method.volumes().r.base, 0).unwrap();
@@ -429,15 +447,12 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_t
     // only the sky's share of the probe in L_rv (the answer's sharp shadow; the nine cones alone
     // leave a faint one), the floor beyond it nearly all.
     let floor_visibility = |probe_lights: u32| {
-        let mut s = Setup::top_down(48);
-        s.probe = Some([0.02, 0.02, 0.02]);
-        s.sun = Some([200.0, 200.0, 200.0]);
-        s.plane(0.5, 0.0, 0.5, true).cube([0.0, 0.05, -0.1], 0.05, false);
+        let mut s = sun_over_floor();
+        s.cube([0.0, 0.05, -0.1], 0.05, false);
         dvct(&mut s, 32);
         s.extra_toml += &format!("extent = 4.0\nprobe_lights = {probe_lights}\ntrace_block = 1\n");
         let r = s.render();
-        let method = r.renderer.method_as::<DvctMethod>().expect("the dvct method");
-        let visibility = method.indirect.read_probe_visibility(&r.ctx).unwrap();
+        let visibility = probe_visibility(&r);
         let at = |target: Vec3| {
             let i = floor_pixel(&r, 48, target);
             (visibility.rv[i][0], visibility.r[i][0])

@@ -33,8 +33,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         var s = voxel_surface(voxel_triangle(real), centre);
         // A real proxy's side that matters is the one facing the virtual content (the
         // volume's centre): a room's walls gather inward whichever way their normals point.
-        let toward = params.origin.xyz + 0.5 * volume_side() - s.position;
-        s.normal = select(-s.normal, s.normal, dot(s.normal, toward) >= 0.0);
+        s.normal = select(-s.normal, s.normal, dot(s.normal, toward_centre(s.position)) >= 0.0);
         let e = gather_diffuse(s.position, s.normal, bounce_spacing());
         rv += vec4f(s.albedo / PI * (e.rv + e.env_rv), 0.0);
         r += vec4f(s.albedo / PI * (e.r + e.env_r), 0.0);

@@ -336,11 +336,14 @@ impl DvctMethod {
         }
 
         // The photo's light in the second bounce's real voxels (photo_pass.wgsl).
+        // A 3D texture read texel by texel (the raw volumes, the mipmaps' finer level).
+        let unfiltered_3d = |i| {
+            let unfiltered = wgpu::TextureSampleType::Float { filterable: false };
+            bind::texture(i, cs, unfiltered, wgpu::TextureViewDimension::D3)
+        };
         let mut photo_passes = Vec::new();
         if cascades.iter().any(|c| c.raw.is_some()) {
-            let unfiltered = wgpu::TextureSampleType::Float { filterable: false };
-            let raw_3d = |i| bind::texture(i, cs, unfiltered, wgpu::TextureViewDimension::D3);
-            let raw_layout = bind::layout(device, "dvct/raw_layout", &[raw_3d(0), raw_3d(1)]);
+            let raw_layout = bind::layout(device, "dvct/raw_layout", &[unfiltered_3d(0), unfiltered_3d(1)]);
             let pipeline = compute_pipeline(
                 device,
                 "dvct/photo",
@@ -361,14 +364,10 @@ impl DvctMethod {
         }
 
         // Mipmaps: the three axis chains of one solution per dispatch.
-        let finer = |i| {
-            let unfiltered = wgpu::TextureSampleType::Float { filterable: false };
-            bind::texture(i, cs, unfiltered, wgpu::TextureViewDimension::D3)
-        };
         let mips_layout = bind::layout(
             device,
             "dvct/mips_layout",
-            &[finer(0), finer(1), finer(2), storage_3d(3), storage_3d(4), storage_3d(5)],
+            &[unfiltered_3d(0), unfiltered_3d(1), unfiltered_3d(2), storage_3d(3), storage_3d(4), storage_3d(5)],
         );
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
         let chain = |pairs: Vec<&VolumePair>| {

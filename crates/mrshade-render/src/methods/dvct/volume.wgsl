@@ -16,6 +16,9 @@ fn voxel_side() -> f32 { return params.origin.w; }
 fn volume_side() -> f32 { return params.origin.w * f32(params.info.x); }
 fn voxel_index(v: vec3u) -> u32 { return (v.z * params.info.x + v.y) * params.info.x + v.x; }
 fn voxel_centre(v: vec3u) -> vec3f { return params.origin.xyz + (vec3f(v) + 0.5) * voxel_side(); }
+// From `p` toward the volume's centre, where the virtual content is: the side of a real surface
+// that matters faces it (voxelize.wgsl keeps that face, bounce.wgsl gathers on that side).
+fn toward_centre(p: vec3f) -> vec3f { return params.origin.xyz + 0.5 * volume_side() - p; }
 
 // A voxel's word in the voxels buffer (voxelize.wgsl): 0 when it holds no surface of its
 // kind, else the kept triangle + 1 with VOXEL_FACES_CENTRE set when that triangle faces the

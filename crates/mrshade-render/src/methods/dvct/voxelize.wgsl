@@ -86,8 +86,8 @@ fn cs_main(
     if (any(lo > hi)) { return; }
     let size = vec2u(hi - lo) + 1u;
     let s = select(-1.0, 1.0, n.z >= 0.0);
-    let centre = 0.5 * res - (v[0] + v[1] + v[2]) / 3.0;
-    let word = (triangle + 1u) | select(0u, VOXEL_FACES_CENTRE, dot(normal, centre) > 0.0);
+    let centroid = params.origin.xyz + (v[0] + v[1] + v[2]) / 3.0 * voxel_side();
+    let word = (triangle + 1u) | select(0u, VOXEL_FACES_CENTRE, dot(normal, toward_centre(centroid)) > 0.0);
     // The plane w(u, v) and how much it rises across half a cell.
     let slope = -n.xy / n.z;
     let rise = 0.5 * (abs(slope.x) + abs(slope.y));
