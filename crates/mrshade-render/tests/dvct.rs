@@ -212,6 +212,70 @@ fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
     }
 }
 
+/// A level of a volume read back as f32 texels (rgba).
+fn volume_level(r: &common::Rendered, texture: &wgpu::Texture, level: u32) -> Vec<[f32; 4]> {
+    let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, texture, level).unwrap();
+    let texels: &[[half::f16; 4]] = bytemuck::cast_slice(&bytes);
+    texels.iter().map(|t| t.map(|c| c.to_f32())).collect()
+}
+
+/// mips.wgsl's parent on the CPU: along `axis`, each pair of children composited front to
+/// back (the front one nearer the volume's centre, the high one when `nearer_high`), the four
+/// columns averaged.
+fn parent_along(children: [[f32; 4]; 8], axis: usize, nearer_high: bool) -> [f32; 4] {
+    let over = |f: [f32; 4], b: [f32; 4]| std::array::from_fn::<f32, 4, _>(|c| f[c] + (1.0 - f[3]) * b[c]);
+    let bit = 1 << axis;
+    let mut sum = [0.0; 4];
+    for k in (0..8).filter(|k| k & bit == 0) {
+        let (low, high) = (children[k], children[k | bit]);
+        let p = if nearer_high { over(high, low) } else { over(low, high) };
+        (0..4).for_each(|c| sum[c] += 0.25 * p[c]);
+    }
+    sum
+}
+
+#[test]
+fn every_level_of_the_anisotropic_chains_is_its_finer_levels_parents() {
+    // Several levels are made per dispatch (in workgroup memory): each level read back must be
+    // the CPU's parents of the finer one read back, to the volumes' half-float precision, down
+    // to the last 1³ (levels past a dispatch's first included).
+    let mut s = Setup::top_down(16);
+    s.plane(2.0, 0.0, 0.8, true).cube([0.05, 0.1, -0.03], 0.1, false).cube([-0.12, 0.05, 0.1], 0.05, true);
+    dvct(&mut s, 32);
+    let r = s.render();
+    let volumes = dvct_method(&r).volumes();
+    for volume in [&volumes.rv, &volumes.r] {
+        let base = volume_level(&r, &volume.base, 0);
+        let res = dvct_method(&r).params().info.x as usize;
+        let mut finer = [base.clone(), base.clone(), base];
+        let mut lit = 0;
+        for level in 1..mrshade_render::methods::dvct::levels(res as u32) {
+            let side = res >> level;
+            for (axis, texture) in volume.axes.iter().enumerate() {
+                let gpu = volume_level(&r, texture, level - 1);
+                for (i, texel) in gpu.iter().enumerate() {
+                    let id = [i % side, (i / side) % side, i / (side * side)];
+                    let children = std::array::from_fn(|k| {
+                        let c = [0, 1, 2].map(|a| 2 * id[a] + ((k >> a) & 1));
+                        finer[axis][(c[2] * 2 * side + c[1]) * 2 * side + c[0]]
+                    });
+                    let want = parent_along(children, axis, 2 * id[axis] < side);
+                    for c in 0..4 {
+                        let tolerance = 2e-3 * want[c].abs() + 1e-4;
+                        assert!(
+                            (texel[c] - want[c]).abs() <= tolerance,
+                            "level {level} axis {axis} texel {id:?}: {texel:?}, the CPU's {want:?}"
+                        );
+                    }
+                    lit += (want[3] > 0.0) as usize;
+                }
+                finer[axis] = gpu;
+            }
+        }
+        assert!(lit > 20, "the chains hold almost nothing ({lit} texels)");
+    }
+}
+
 /// Cosine-weighted fraction of the hemisphere above the floor point `p` that the
 /// axis-aligned cube at `c` of half side `h` leaves open (a 64 × 64 stratified grid).
 fn sky_left_by_cube(p: Vec3, c: Vec3, h: f32) -> f32 {
@@ -235,10 +299,10 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
     // Under a uniform probe, the share of a real floor's probe light that its cones let through
     // beside a virtual cube (the probe_visibility AOVs) is the share of its sky that the cube
     // leaves open. Wide cones whose samples' opacities compound hid the cube's share several
-    // times over (its side fills the same part of a cone sample after sample). Samples twice as
-    // far apart (`dvct.sample_spacing`), each compounding its opacity over the length it stands
-    // for, must hide the same share.
-    for spacing in [0.5, 1.0] {
+    // times over (its side fills the same part of a cone sample after sample). Samples two and
+    // three times as far apart (`dvct.sample_spacing`; 1.5 is the second bounce's), each
+    // compounding its opacity over the length it stands for, must hide the same share.
+    for spacing in [0.5, 1.0, 1.5] {
         let mut s = Setup::top_down(48);
         s.probe = Some([0.8, 0.8, 0.8]);
         let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);

@@ -35,9 +35,11 @@ pub struct DvctSettings {
     /// sample per voxel side read; larger is faster and coarser.
     pub sample_spacing: f32,
     /// The same for the cones the second bounce gathers with per voxel (`bounces` = 2), whose
-    /// light the pixels' cones blur again. Default 1, the farthest apart whose samples'
-    /// footprints still meet: the second bounce in 0.73 of the time of 0.5, the four diffuse
-    /// benchmark scenes' region FLIP within 0.5 % (docs/benchmarks.md).
+    /// light the pixels' cones blur again. Default 1.5: the second bounce of a moving cornell
+    /// frame in 0.78 of the time of 1 (0.57 ms on an H200), the eight benchmark scenes' region
+    /// FLIP equal or lower (at most 0.7 %); the samples' footprints still meet near the surface
+    /// (a voxel apart), farther out a thin wall between two samples counts only in part
+    /// (docs/benchmarks.md).
     pub bounce_spacing: f32,
     /// Injected bounces: 1 is the thesis's single bounce (spec §2.13.9: the unlit side of a
     /// virtual object is black); 2 re-injects the first bounce, gathered per voxel by the nine
@@ -78,7 +80,7 @@ impl Default for DvctSettings {
             outer_resolution: 64,
             diffuse_aperture: 0.6,
             sample_spacing: 0.5,
-            bounce_spacing: 1.0,
+            bounce_spacing: 1.5,
             bounces: 2,
             trace_block: 4,
             photo_voxels: true,

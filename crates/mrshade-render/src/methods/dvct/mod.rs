@@ -51,6 +51,15 @@ fn geometry<'a>(c: &'a Cascade, g: &'a Geometry) -> Vec<wgpu::BindingResource<'a
     ]
 }
 
+/// One level of one solution's mipmaps (mips.wgsl).
+struct MipDispatch {
+    group: wgpu::BindGroup,
+    /// The level's side.
+    side: u32,
+    /// Whether it is the first, read from the voxels themselves.
+    from_voxels: bool,
+}
+
 /// A pass over every voxel of one cascade: its pipeline and groups.
 type VoxelPass = (wgpu::ComputePipeline, Vec<wgpu::BindGroup>);
 
@@ -70,11 +79,13 @@ pub struct DvctMethod {
     /// The photo's light in the second bounce's real voxels, per cascade (`dvct.photo_voxels`
     /// with two bounces; with one the light pass takes it).
     photo: Vec<VoxelPass>,
+    /// The mipmaps' first level (from the voxels) and the levels after it (mips.wgsl).
+    mips_base: wgpu::ComputePipeline,
     mips: wgpu::ComputePipeline,
     /// Per volume pair (first bounces, then second bounces, cascade by cascade), per level from
-    /// 1 and solution: the group and the level's side.
-    first_mips: Vec<(wgpu::BindGroup, u32)>,
-    second_mips: Vec<(wgpu::BindGroup, u32)>,
+    /// 1 and solution.
+    first_mips: Vec<MipDispatch>,
+    second_mips: Vec<MipDispatch>,
     /// The cones, once per trace texel (`dvct.trace_block`).
     trace: Dispatch,
     /// Their light per pixel, over the internal size.
@@ -370,6 +381,7 @@ impl DvctMethod {
             &[unfiltered_3d(0), unfiltered_3d(1), unfiltered_3d(2), storage_3d(3), storage_3d(4), storage_3d(5)],
         );
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
+        let mips_base = compute_pipeline_entry(device, "dvct/mips_base", MIPS_SHADER, "cs_base", &[&mips_layout]);
         let chain = |pairs: Vec<&VolumePair>| {
             let mut groups = Vec::new();
             for pair in pairs {
@@ -379,7 +391,8 @@ impl DvctMethod {
                         let finer = volume.level(level - 1);
                         let out = volume.level(level);
                         let resources: Vec<_> = finer.iter().chain(&out).map(TextureView).collect();
-                        groups.push((bind::group(device, "dvct/mips_group", &mips_layout, &resources), res >> level));
+                        let group = bind::group(device, "dvct/mips_group", &mips_layout, &resources);
+                        groups.push(MipDispatch { group, side: res >> level, from_voxels: level == 1 });
                     }
                 }
             }
@@ -402,6 +415,7 @@ impl DvctMethod {
             light,
             bounce,
             photo: photo_passes,
+            mips_base,
             mips,
             first_mips,
             second_mips,
@@ -434,11 +448,11 @@ impl DvctMethod {
         self.cascades[0].lit()
     }
 
-    fn record_mips(&self, pass: &mut wgpu::ComputePass<'_>, groups: &[(wgpu::BindGroup, u32)]) {
-        pass.set_pipeline(&self.mips);
-        for (group, side) in groups {
-            pass.set_bind_group(0, group, &[]);
-            let n = side.div_ceil(4);
+    fn record_mips(&self, pass: &mut wgpu::ComputePass<'_>, dispatches: &[MipDispatch]) {
+        for d in dispatches {
+            pass.set_pipeline(if d.from_voxels { &self.mips_base } else { &self.mips });
+            pass.set_bind_group(0, &d.group, &[]);
+            let n = d.side.div_ceil(4);
             pass.dispatch_workgroups(n, n, n);
         }
     }
