@@ -176,6 +176,13 @@ fn a_lit_floor_does_not_light_itself() {
     assert!(indirect_rv.pixels.iter().any(|p| p[0] > 1e-4), "no bounce from the cube");
 }
 
+/// A level of a volume read back as f32 texels (rgba).
+fn volume_level(r: &common::Rendered, texture: &wgpu::Texture, level: u32) -> Vec<[f32; 4]> {
+    let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, texture, level).unwrap();
+    let texels: &[[half::f16; 4]] = bytemuck::cast_slice(&bytes);
+    texels.iter().map(|t| t.map(|c| c.to_f32())).collect()
+}
+
 #[test]
 fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
     // A real floor, one voxel thick in the volume: the chain seen along its normal (y) keeps
@@ -197,12 +204,9 @@ fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
             .axes
             .iter()
             .map(|axis| {
-                let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, axis, level - 1).unwrap();
-                let texels: &[[half::f16; 4]] = bytemuck::cast_slice(&bytes);
+                let texels = volume_level(&r, axis, level - 1);
                 let centre = side / 2;
-                (0..side)
-                    .map(|y| texels[((centre * side + y) * side + centre) as usize][3].to_f32())
-                    .fold(0.0, f32::max)
+                (0..side).map(|y| texels[((centre * side + y) * side + centre) as usize][3]).fold(0.0, f32::max)
             })
             .collect();
         assert!(max_alpha[1] > 0.99, "level {level}: the floor seen along y has opacity {}", max_alpha[1]);
@@ -210,13 +214,6 @@ fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
             assert!(max_alpha[a] < 0.6, "level {level}: the floor seen edge-on has opacity {}", max_alpha[a]);
         }
     }
-}
-
-/// A level of a volume read back as f32 texels (rgba).
-fn volume_level(r: &common::Rendered, texture: &wgpu::Texture, level: u32) -> Vec<[f32; 4]> {
-    let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, texture, level).unwrap();
-    let texels: &[[half::f16; 4]] = bytemuck::cast_slice(&bytes);
-    texels.iter().map(|t| t.map(|c| c.to_f32())).collect()
 }
 
 /// mips.wgsl's parent on the CPU: along `axis`, each pair of children composited front to
@@ -236,17 +233,18 @@ fn parent_along(children: [[f32; 4]; 8], axis: usize, nearer_high: bool) -> [f32
 
 #[test]
 fn every_level_of_the_anisotropic_chains_is_its_finer_levels_parents() {
-    // Several levels are made per dispatch (in workgroup memory): each level read back must be
-    // the CPU's parents of the finer one read back, to the volumes' half-float precision, down
-    // to the last 1³ (levels past a dispatch's first included).
+    // Each level read back must be the CPU's parents of the finer one read back, to the
+    // volumes' half-float precision, down to the last 1³: the first from the voxels (read once
+    // for the three chains, mips.wgsl `cs_base`), the others from their own chain.
     let mut s = Setup::top_down(16);
     s.plane(2.0, 0.0, 0.8, true).cube([0.05, 0.1, -0.03], 0.1, false).cube([-0.12, 0.05, 0.1], 0.05, true);
     dvct(&mut s, 32);
     let r = s.render();
-    let volumes = dvct_method(&r).volumes();
+    let method = dvct_method(&r);
+    let res = method.params().info.x as usize;
+    let volumes = method.volumes();
     for volume in [&volumes.rv, &volumes.r] {
         let base = volume_level(&r, &volume.base, 0);
-        let res = dvct_method(&r).params().info.x as usize;
         let mut finer = [base.clone(), base.clone(), base];
         let mut lit = 0;
         for level in 1..mrshade_render::methods::dvct::levels(res as u32) {
