@@ -38,31 +38,12 @@ fn voxel_words(r: &common::Rendered) -> Vec<(Vec3, u32, u32)> {
         .collect()
 }
 
-/// A real floor under a dim sky with a small bright sun 45° up toward −z, seen from above.
-fn sun_over_floor() -> Setup {
-    let mut s = Setup::top_down(48);
-    s.probe = Some([0.02, 0.02, 0.02]);
-    s.sun = Some([200.0, 200.0, 200.0]);
-    s.plane(0.5, 0.0, 0.5, true);
-    s
-}
-
 /// Distance from `p` to the surface of the axis-aligned cube at `c` of half side `h`.
 fn cube_surface_distance(p: Vec3, c: Vec3, h: f32) -> f32 {
     let q = (p - c).abs() - Vec3::splat(h);
     let outside = q.max(Vec3::ZERO).length();
     let inside = q.max_element().min(0.0);
     (outside + inside).abs()
-}
-
-/// Index of the pixel of a `size`² top-down render whose centre sees the floor (y = 0) nearest
-/// to `target`.
-fn floor_pixel(r: &common::Rendered, size: u32, target: Vec3) -> usize {
-    let (x, y) = (0..size * size)
-        .map(|i| (i % size, i / size))
-        .min_by_key(|&(x, y)| (r.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
-        .unwrap();
-    (y * size + x) as usize
 }
 
 #[test]
@@ -410,13 +391,13 @@ fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
     // shadow keeps only the sky's share of the probe, the floor beyond it nearly all. The
     // nine 60° cones alone (`probe_lights = 0`) blur the sun's shadow away.
     let floor_visibility = |probe_lights: u32| {
-        let mut s = sun_over_floor();
+        let mut s = Setup::sun_over_floor();
         s.cube([0.0, 0.05, -0.1], 0.05, true).cube([0.1, 0.04, 0.05], 0.04, false);
         dvct(&mut s, 32);
         s.extra_toml += &format!("probe_lights = {probe_lights}\ntrace_block = 1\n");
         let r = s.render();
         let visibility = probe_visibility(&r);
-        let at = |target: Vec3| visibility.r[floor_pixel(&r, 48, target)][0];
+        let at = |target: Vec3| visibility.r[r.floor_pixel(target)][0];
         // The shadow reaches from z = −0.05 to +0.05 (the cube is 0.1 high).
         (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.1)))
     };
@@ -509,14 +490,14 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_t
     // only the sky's share of the probe in L_rv (the answer's sharp shadow; the nine cones alone
     // leave a faint one), the floor beyond it nearly all.
     let floor_visibility = |probe_lights: u32| {
-        let mut s = sun_over_floor();
+        let mut s = Setup::sun_over_floor();
         s.cube([0.0, 0.05, -0.1], 0.05, false);
         dvct(&mut s, 32);
         s.extra_toml += &format!("extent = 4.0\nprobe_lights = {probe_lights}\ntrace_block = 1\n");
         let r = s.render();
         let visibility = probe_visibility(&r);
         let at = |target: Vec3| {
-            let i = floor_pixel(&r, 48, target);
+            let i = r.floor_pixel(target);
             (visibility.rv[i][0], visibility.r[i][0])
         };
         (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09)))

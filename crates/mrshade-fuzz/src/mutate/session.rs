@@ -53,6 +53,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.probe_lights", Kind::Number),
     ("dlpv.probe_rsm_resolution", Kind::Number),
     ("dlpv.splat", Kind::Choice(&["cell", "trilinear", "nearest"])),
+    ("dlpv.sharp_probe_shadows_deg", Kind::Number),
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),

@@ -23,6 +23,16 @@ fn probe_map_blocked(texel: i32, p: vec3f, l: vec3f, bias: f32) -> bool {
     return t.position.w > 0.5 && dot(t.position.xyz - p, l) > bias;
 }
 
+// Half a texel of the map (its side is the light's texel size × resolution): how far a point
+// is lifted off its surface and again along the light before the maps are read. Two texels
+// lifted a point out of an object's contact shadow by a centimetre: the probe lit the desk
+// under the bunny's rim and the rim from it (dvct's region FLIP on desk-bunny 0.0845 → 0.0756
+// at half a texel, every diffuse scene lower, dlpv's too; a quarter of a texel lets the desk
+// shadow itself).
+fn probe_map_bias(light: Light) -> f32 {
+    return 0.5 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
+}
+
 // Σw·V of both solutions and Σw, w = E_k·⟨n, l_k⟩₊·s_k per channel, over the probe's lights:
 // V_r = 0 where a real surface lies toward the light, V_rv also where a virtual one does.
 // s_k = 1 with `sharp_below` = 0; else how sharp a shadow light k casts, 1 up to an angular
@@ -44,16 +54,9 @@ fn probe_map_visibility(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapVisibil
         let l = -light.direction_real.xyz;
         let e = light.intensity.rgb * max(dot(n, l), 0.0);
         out.all_weight += e;
-        var sharpness = 1.0;
-        if (sharp_below > 0.0) { sharpness = saturate(2.0 - bitcast<f32>(pair.w) / sharp_below); }
-        let w = e * sharpness;
+        let w = e * probe_light_sharpness(pair.w, sharp_below);
         if (all(w == vec3f(0.0))) { continue; }
-        // Half a texel of the map (its side is the light's texel size × resolution), off the
-        // surface and again along the light. Two texels lifted a point out of an object's
-        // contact shadow by a centimetre: the probe lit the desk under the bunny's rim and the
-        // rim from it (dvct's region FLIP on desk-bunny 0.0845 → 0.0756 at half a texel, every
-        // diffuse scene lower, dlpv's too; a quarter of a texel lets the desk shadow itself).
-        let bias = 0.5 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
+        let bias = probe_map_bias(light);
         let q = p + n * bias;
         let real = probe_map_texel(pair.x, q);
         let v_r = select(1.0, 0.0, probe_map_blocked(real, q, l, bias));
@@ -62,6 +65,34 @@ fn probe_map_visibility(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapVisibil
         out.visible_rv += w * v_r * v_v;
         out.weight += w;
         out.covered = out.covered && real >= 0;
+    }
+    return out;
+}
+
+// The probe's light that the virtual content alone takes from a real surface point, from the
+// lights up to `sharp_below` (weighted as in probe_map_visibility): Σ w·V_r·(1 − V_v), and
+// Σ E_k·⟨n, l_k⟩₊ over every light. The virtual-only map is read first: where it shows no
+// blocker (most of a frame) the real-only one is not read.
+struct ProbeMapShadow {
+    blocked: vec3f,
+    all_weight: vec3f,
+}
+
+fn probe_map_virtual_shadow(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapShadow {
+    var out = ProbeMapShadow(vec3f(0.0), vec3f(0.0));
+    for (var i = 0u; i < probe_info.x; i++) {
+        let pair = probe_pairs[i];
+        let light = probe_lights[pair.z];
+        let l = -light.direction_real.xyz;
+        let e = light.intensity.rgb * max(dot(n, l), 0.0);
+        out.all_weight += e;
+        let w = e * probe_light_sharpness(pair.w, sharp_below);
+        if (all(w == vec3f(0.0))) { continue; }
+        let bias = probe_map_bias(light);
+        let q = p + n * bias;
+        if (!probe_map_blocked(probe_map_texel(pair.y, q), q, l, bias)) { continue; }
+        if (probe_map_blocked(probe_map_texel(pair.x, q), q, l, bias)) { continue; }
+        out.blocked += w;
     }
     return out;
 }

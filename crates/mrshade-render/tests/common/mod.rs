@@ -51,6 +51,16 @@ impl Setup {
         }
     }
 
+    /// A real floor under a dim sky with a small bright sun 45° up toward −z, seen from above
+    /// (48² pixels).
+    pub fn sun_over_floor() -> Self {
+        let mut s = Self::top_down(48);
+        s.probe = Some([0.02, 0.02, 0.02]);
+        s.sun = Some([200.0, 200.0, 200.0]);
+        s.plane(0.5, 0.0, 0.5, true);
+        s
+    }
+
     /// Adds a Lambertian quad of half size `half` at height `y`.
     pub fn plane(&mut self, half: f32, y: f32, albedo: f32, real: bool) -> &mut Self {
         let m = self.gltf.material(mrshade_testkit::gltf::lambert("plane", [albedo; 3]));
@@ -158,6 +168,16 @@ impl Rendered {
         let (a, b) = self.pixel_ray(x, y);
         let t = (at - a.x) / (b.x - a.x);
         a + (b - a) * t
+    }
+
+    /// Index of the internal pixel whose centre sees the floor (y = 0) nearest to `target`.
+    pub fn floor_pixel(&self, target: Vec3) -> usize {
+        let w = self.radiance.rv.width;
+        let (x, y) = (0..w * self.radiance.rv.height)
+            .map(|i| (i % w, i / w))
+            .min_by_key(|&(x, y)| (self.world_on_plane(x, y, 0.0).distance(target) * 1e5) as u32)
+            .unwrap();
+        (y * w + x) as usize
     }
 
     pub fn l_rv(&self, x: u32, y: u32) -> Vec3 {

@@ -4,11 +4,13 @@
 // irradiance of a cell's intensity over its cross-section. Virtual pixels take V_ρ's light
 // (Eq. 5.15); real ones the real scene's bounce light of V_μ in both L_rv and L_r (the
 // model of the photo the α-scaled composite divides by) and the signed change of V_Δ in
-// L_rv (Eq. 5.16), so that L_rv − L_r is the change. On real pixels the probe's
-// shadow is in the direct change; virtual ones see the probe through the maps of its
-// directional lights (spec §2.3's suggested upgrade of ambient occlusion to directional
-// occlusion): the visibility sums Σw·V over the lights, w = E_k·⟨n, l_k⟩₊ per channel, V = 0
-// where a real or virtual surface lies toward the light (the desk below, the object itself).
+// L_rv (Eq. 5.16), so that L_rv − L_r is the change. On real pixels the virtual content's
+// shadow of the probe's broad lights is in the direct change, that of its sharp ones (up to
+// `dlpv.sharp_probe_shadows_deg`) read from their maps here; virtual ones see the probe
+// through the maps of its directional lights (spec §2.3's suggested upgrade of ambient
+// occlusion to directional occlusion): the visibility sums Σw·V over the lights,
+// w = E_k·⟨n, l_k⟩₊ per channel, V = 0 where a real or virtual surface lies toward the light
+// (the desk below, the object itself).
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: DlpvParams;
@@ -83,6 +85,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (is_real(flags)) {
         let model = diffuse * max(volume_irradiance(VOLUME_MU, s.position, s.normal), vec3f(0.0));
         let change = diffuse * volume_irradiance(VOLUME_DELTA, s.position, s.normal);
+        // The probe's sharp lights' shadow of the virtual content, from their maps (the
+        // volume's direct change holds the rest, inject.wgsl); L_r's probe light unshadowed.
+        if (params.scale.y > 0.0) {
+            let shadow = probe_map_virtual_shadow(s.position, s.normal, params.scale.y);
+            if (all(shadow.all_weight > vec3f(0.0))) {
+                let all = shadow.all_weight;
+                store_indirect(pixel, model + change, model, all - shadow.blocked, all, all);
+                return;
+            }
+        }
         store_indirect(pixel, model + change, model, vec3f(1.0), vec3f(1.0), vec3f(1.0));
         return;
     }

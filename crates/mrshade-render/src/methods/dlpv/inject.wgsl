@@ -12,7 +12,9 @@
 //   nearer); texels seen by both cancel exactly instead of by subtractive blending;
 // - direct change (lights split from the probe only; punctual shadows come from the shadow
 //   maps): −Φ of the light on the real surface that the virtual one now hides, lobe along the
-//   light's direction, half a cell toward the light. The positive half, light on the virtual
+//   light's direction, half a cell toward the light, weighted by how broad the light is
+//   (1 − probe_light_sharpness: the merge reads the sharp lights' shadow from their maps,
+//   `dlpv.sharp_probe_shadows_deg`). The positive half, light on the virtual
 //   surface, is left out: propagated along the light it would relight the shadow it casts,
 //   and virtual pixels are shaded directly.
 // Each is shifted half a cell along its lobe (the thesis's guard against self-illumination)
@@ -122,7 +124,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         if (light.info.x != LIGHT_DIRECTIONAL) { d = normalize(real.position.xyz - light.position.xyz); }
         let cos_n = max(dot(-d, real.normal.xyz), 0.25);
         let lobe = sh4(d) / (0.25 + 0.5 * cos_n);
-        let lost = -real.power.rgb;
+        let lost = -real.power.rgb * (1.0 - probe_light_sharpness(pair.w, params.scale.y));
         splat(SOURCE_DIRECT, real.position.xyz - 0.5 * cell_side() * d, array<vec4f, 3>(lobe * lost.r, lobe * lost.g, lobe * lost.b));
     }
 }

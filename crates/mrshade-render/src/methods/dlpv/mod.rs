@@ -39,7 +39,8 @@ pub struct DlpvParams {
     /// Cells per side, cells in all, propagation step (0: seeding, injection), splat (0: into
     /// the cell, 1: trilinear).
     pub info: UVec4,
-    /// Fixed-point units per watt, unused…
+    /// Fixed-point units per watt; the angular radius (rad) below which a probe light shadows
+    /// real surfaces through its maps (`dlpv.sharp_probe_shadows_deg`), unused…
     pub scale: Vec4,
     /// Propagation steps per source.
     pub steps: UVec4,
@@ -178,7 +179,12 @@ impl DlpvMethod {
         let params = DlpvParams {
             origin: origin.extend(side / res as f32),
             info: UVec4::new(res, cells, 0, splat),
-            scale: Vec4::new(FIXED_POINT_RANGE / bound.max(1e-12), 0.0, 0.0, 0.0),
+            scale: Vec4::new(
+                FIXED_POINT_RANGE / bound.max(1e-12),
+                settings.sharp_probe_shadows_deg.to_radians(),
+                0.0,
+                0.0,
+            ),
             steps: {
                 let mut steps = [0; SOURCES as usize];
                 steps[SOURCE_RHO] = settings.propagation_steps;
@@ -458,6 +464,7 @@ pub const INJECT_SHADER: &str = wgsl!(
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/sh.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
+    "../../../shaders/lib/probe_light.wgsl",
     "volume.wgsl",
     "inject.wgsl",
 );
@@ -478,6 +485,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/sh.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
+    "../../../shaders/lib/probe_light.wgsl",
     "../../../shaders/lib/probe_maps.wgsl",
     "volume.wgsl",
     "gather.wgsl",

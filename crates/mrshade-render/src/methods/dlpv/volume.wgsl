@@ -8,7 +8,8 @@ struct DlpvParams {
     // cells per side, cells in all, this propagation dispatch's step (from 1; 0 for seeding
     // and injection), how VPLs are splatted (SPLAT_*)
     info: vec4u,
-    // fixed-point units per watt of injected intensity coefficients, unused…
+    // fixed-point units per watt of injected intensity coefficients, the angular radius (rad)
+    // below which a probe light shadows real surfaces through its maps, unused…
     scale: vec4f,
     // propagation steps per source (SOURCE_*)
     steps: vec4u,

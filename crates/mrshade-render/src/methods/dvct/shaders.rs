@@ -77,6 +77,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/sampling.wgsl",
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
+    "../../../shaders/lib/probe_light.wgsl",
     "../../../shaders/lib/probe_maps.wgsl",
     "volume.wgsl",
     "texel.wgsl",
