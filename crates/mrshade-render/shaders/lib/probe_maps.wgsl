@@ -33,6 +33,27 @@ fn probe_map_bias(light: Light) -> f32 {
     return 0.5 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
 }
 
+// Probe light `i` seen from `p` (normal `n`): its pair of maps, the direction toward it, its
+// irradiance E·⟨n, l⟩₊ and that weighted by its sharpness (probe_light_sharpness), and the
+// point lifted by the maps' bias where they are read.
+struct ProbeMapLight {
+    pair: vec4u,
+    l: vec3f,
+    e: vec3f,
+    w: vec3f,
+    q: vec3f,
+    bias: f32,
+}
+
+fn probe_map_light(i: u32, p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapLight {
+    let pair = probe_pairs[i];
+    let light = probe_lights[pair.z];
+    let l = -light.direction_real.xyz;
+    let e = light.intensity.rgb * max(dot(n, l), 0.0);
+    let bias = probe_map_bias(light);
+    return ProbeMapLight(pair, l, e, e * probe_light_sharpness(pair.w, sharp_below), p + n * bias, bias);
+}
+
 // Σw·V of both solutions and Σw, w = E_k·⟨n, l_k⟩₊·s_k per channel, over the probe's lights:
 // V_r = 0 where a real surface lies toward the light, V_rv also where a virtual one does.
 // s_k = 1 with `sharp_below` = 0; else how sharp a shadow light k casts, 1 up to an angular
@@ -49,21 +70,15 @@ struct ProbeMapVisibility {
 fn probe_map_visibility(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapVisibility {
     var out = ProbeMapVisibility(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), true);
     for (var i = 0u; i < probe_info.x; i++) {
-        let pair = probe_pairs[i];
-        let light = probe_lights[pair.z];
-        let l = -light.direction_real.xyz;
-        let e = light.intensity.rgb * max(dot(n, l), 0.0);
-        out.all_weight += e;
-        let w = e * probe_light_sharpness(pair.w, sharp_below);
-        if (all(w == vec3f(0.0))) { continue; }
-        let bias = probe_map_bias(light);
-        let q = p + n * bias;
-        let real = probe_map_texel(pair.x, q);
-        let v_r = select(1.0, 0.0, probe_map_blocked(real, q, l, bias));
-        let v_v = select(1.0, 0.0, probe_map_blocked(probe_map_texel(pair.y, q), q, l, bias));
-        out.visible_r += w * v_r;
-        out.visible_rv += w * v_r * v_v;
-        out.weight += w;
+        let k = probe_map_light(i, p, n, sharp_below);
+        out.all_weight += k.e;
+        if (all(k.w == vec3f(0.0))) { continue; }
+        let real = probe_map_texel(k.pair.x, k.q);
+        let v_r = select(1.0, 0.0, probe_map_blocked(real, k.q, k.l, k.bias));
+        let v_v = select(1.0, 0.0, probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.q, k.l, k.bias));
+        out.visible_r += k.w * v_r;
+        out.visible_rv += k.w * v_r * v_v;
+        out.weight += k.w;
         out.covered = out.covered && real >= 0;
     }
     return out;
@@ -81,18 +96,12 @@ struct ProbeMapShadow {
 fn probe_map_virtual_shadow(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapShadow {
     var out = ProbeMapShadow(vec3f(0.0), vec3f(0.0));
     for (var i = 0u; i < probe_info.x; i++) {
-        let pair = probe_pairs[i];
-        let light = probe_lights[pair.z];
-        let l = -light.direction_real.xyz;
-        let e = light.intensity.rgb * max(dot(n, l), 0.0);
-        out.all_weight += e;
-        let w = e * probe_light_sharpness(pair.w, sharp_below);
-        if (all(w == vec3f(0.0))) { continue; }
-        let bias = probe_map_bias(light);
-        let q = p + n * bias;
-        if (!probe_map_blocked(probe_map_texel(pair.y, q), q, l, bias)) { continue; }
-        if (probe_map_blocked(probe_map_texel(pair.x, q), q, l, bias)) { continue; }
-        out.blocked += w;
+        let k = probe_map_light(i, p, n, sharp_below);
+        out.all_weight += k.e;
+        if (all(k.w == vec3f(0.0))) { continue; }
+        if (!probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.q, k.l, k.bias)) { continue; }
+        if (probe_map_blocked(probe_map_texel(k.pair.x, k.q), k.q, k.l, k.bias)) { continue; }
+        out.blocked += k.w;
     }
     return out;
 }
