@@ -192,28 +192,31 @@ fn injecting_into_a_cell_and_trilinearly_put_the_same_light_at_the_same_place() 
 
 #[test]
 fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_through_its_maps() {
-    // A dim sky with a small bright sun 45° up toward −z over a real floor, a virtual cube on
-    // it: the floor in the cube's sun shadow keeps only the sky's share of its light (L_rv/L_r;
-    // the answer's sharp shadow) and beyond it all of it when the sun's light shadows real
-    // surfaces through its maps (`sharp_probe_shadows_deg`, the default). Left to the volume's
-    // direct change (0, the thesis's), the shadow is a blur over 32³ cells that neither
-    // darkens its core nor stops at its edge.
+    // A dim sky with a small bright sun 45° up toward −z over a real floor, a virtual cube
+    // (10 cm) on it, in a volume of 8³ cells of 5 cm (as coarse, for the cube, as 32³ cells are
+    // around a large object): with the sun's light shadowing real surfaces through its maps
+    // (`sharp_probe_shadows_deg`, the default) the floor keeps only the sky's share of its
+    // light (L_rv/L_r) in the cube's sun shadow and nearly all of it 1 cm beside the shadow;
+    // left to the volume's direct change (0, the thesis's), the shadow is blurred over the
+    // cells, too light inside and darkening the floor beside it.
     let ratios = |sharp_deg: f32| {
         let mut s = Setup::sun_over_floor();
         s.cube([0.0, 0.05, -0.1], 0.05, false);
         s.top_toml = "method = \"dlpv\"\n".into();
-        s.extra_toml += &format!("[dlpv]\nextent = 4.0\nsharp_probe_shadows_deg = {sharp_deg}\n");
+        s.extra_toml += &format!("[dlpv]\nextent = 4.0\nresolution = 8\nsharp_probe_shadows_deg = {sharp_deg}\n");
         let r = s.render();
         let at = |target: Vec3| {
             let i = r.floor_pixel(target);
             r.radiance.rv.pixels[i][1] / r.radiance.r.pixels[i][1]
         };
-        (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09)))
+        // In the shadow (it ends at z = 0.05), beside it (the cube ends at x = 0.05), beyond it.
+        [at(Vec3::new(0.03, 0.0, 0.03)), at(Vec3::new(0.06, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09))]
     };
-    let (shadow, lit) = ratios(8.4);
-    eprintln!("maps: in the sun shadow {shadow:.3}, beyond it {lit:.3}");
-    assert!(shadow < 0.2 && lit > 0.9, "in the shadow {shadow:.3}, beyond it {lit:.3}");
-    let (volume_shadow, volume_lit) = ratios(0.0);
-    eprintln!("volume alone: in the sun shadow {volume_shadow:.3}, beyond it {volume_lit:.3}");
-    assert!(volume_shadow > shadow + 0.2, "the volume alone keeps the shadow: {volume_shadow:.3}");
+    let [shadow, beside, beyond] = ratios(8.4);
+    eprintln!("maps: in the sun shadow {shadow:.3}, beside it {beside:.3}, beyond it {beyond:.3}");
+    assert!(shadow < 0.3 && beside > 0.85 && beyond > 0.9, "{shadow:.3} / {beside:.3} / {beyond:.3}");
+    let [volume_shadow, volume_beside, _] = ratios(0.0);
+    eprintln!("volume alone: in the sun shadow {volume_shadow:.3}, beside it {volume_beside:.3}");
+    assert!(volume_shadow > shadow + 0.2, "the volume's shadow is as dark: {volume_shadow:.3}");
+    assert!(volume_beside < beside - 0.15, "the volume's shadow stops as sharply: {volume_beside:.3}");
 }

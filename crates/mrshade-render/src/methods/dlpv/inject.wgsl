@@ -124,7 +124,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         if (light.info.x != LIGHT_DIRECTIONAL) { d = normalize(real.position.xyz - light.position.xyz); }
         let cos_n = max(dot(-d, real.normal.xyz), 0.25);
         let lobe = sh4(d) / (0.25 + 0.5 * cos_n);
-        let lost = -real.power.rgb * (1.0 - probe_light_sharpness(pair.w, params.scale.y));
+        // What the merge does not read from the maps (every light when it reads none).
+        let broad = select(1.0, 1.0 - probe_light_sharpness(pair.w, params.scale.y), params.scale.y > 0.0);
+        let lost = -real.power.rgb * broad;
         splat(SOURCE_DIRECT, real.position.xyz - 0.5 * cell_side() * d, array<vec4f, 3>(lobe * lost.r, lobe * lost.g, lobe * lost.b));
     }
 }
