@@ -198,25 +198,40 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_through_its_maps() 
     // (`sharp_probe_shadows_deg`, the default) the floor keeps only the sky's share of its
     // light (L_rv/L_r) in the cube's sun shadow and nearly all of it 1 cm beside the shadow;
     // left to the volume's direct change (0, the thesis's), the shadow is blurred over the
-    // cells, too light inside and darkening the floor beside it.
-    let ratios = |sharp_deg: f32| {
+    // cells, too light inside and darkening the floor beside it. Either way the cube takes
+    // about the same light from the floor in all (no share lost or counted twice).
+    let render = |sharp_deg: f32| {
         let mut s = Setup::sun_over_floor();
         s.cube([0.0, 0.05, -0.1], 0.05, false);
         s.top_toml = "method = \"dlpv\"\n".into();
         s.extra_toml += &format!("[dlpv]\nextent = 4.0\nresolution = 8\nsharp_probe_shadows_deg = {sharp_deg}\n");
-        let r = s.render();
-        let at = |target: Vec3| {
-            let i = r.floor_pixel(target);
-            r.radiance.rv.pixels[i][1] / r.radiance.r.pixels[i][1]
-        };
-        // In the shadow (it ends at z = 0.05), beside it (the cube ends at x = 0.05), beyond it.
-        [at(Vec3::new(0.03, 0.0, 0.03)), at(Vec3::new(0.06, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09))]
+        s.render()
     };
-    let [shadow, beside, beyond] = ratios(8.4);
-    eprintln!("maps: in the sun shadow {shadow:.3}, beside it {beside:.3}, beyond it {beyond:.3}");
+    let ratio = |r: &common::Rendered, i: usize| r.radiance.rv.pixels[i][1] / r.radiance.r.pixels[i][1];
+    // In the shadow (it ends at z = 0.05), beside it (the cube ends at x = 0.05), beyond it;
+    // and the light taken from the floor in all (Σ L_r − L_rv over the floor's pixels).
+    let measure = |r: &common::Rendered| {
+        let at = |target: Vec3| ratio(r, r.floor_pixel(target));
+        let w = r.radiance.rv.width;
+        let taken: f32 = (0..r.radiance.rv.pixels.len())
+            .filter(|&i| {
+                // The floor beside the cube (its footprint and a margin left out).
+                let p = r.world_on_plane(i as u32 % w, i as u32 / w, 0.0);
+                p.x.abs() > 0.06 || !(-0.16..=-0.04).contains(&p.z)
+            })
+            .map(|i| r.radiance.r.pixels[i][1] - r.radiance.rv.pixels[i][1])
+            .sum();
+        ([at(Vec3::new(0.03, 0.0, 0.03)), at(Vec3::new(0.06, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09))], taken)
+    };
+    let ([shadow, beside, beyond], taken) = measure(&render(8.4));
+    eprintln!("maps: in the sun shadow {shadow:.3}, beside it {beside:.3}, beyond it {beyond:.3}; taken {taken:.3}");
     assert!(shadow < 0.3 && beside > 0.85 && beyond > 0.9, "{shadow:.3} / {beside:.3} / {beyond:.3}");
-    let [volume_shadow, volume_beside, _] = ratios(0.0);
-    eprintln!("volume alone: in the sun shadow {volume_shadow:.3}, beside it {volume_beside:.3}");
+    let ([volume_shadow, volume_beside, _], volume_taken) = measure(&render(0.0));
+    eprintln!(
+        "volume alone: in the sun shadow {volume_shadow:.3}, beside it {volume_beside:.3}; taken {volume_taken:.3}"
+    );
     assert!(volume_shadow > shadow + 0.2, "the volume's shadow is as dark: {volume_shadow:.3}");
     assert!(volume_beside < beside - 0.15, "the volume's shadow stops as sharply: {volume_beside:.3}");
+    let (lo, hi) = (taken.min(volume_taken), taken.max(volume_taken));
+    assert!(lo > 0.8 * hi, "the light taken from the floor: maps {taken:.3}, volume {volume_taken:.3}");
 }

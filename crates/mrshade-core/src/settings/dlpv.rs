@@ -60,8 +60,8 @@ pub struct DlpvSettings {
     /// the probe (a softbox, a sun) casts the sharp shadow the answer has; a broad sky's 32
     /// hard shadows would draw a fan of copies. 0 leaves every light to the volume (the
     /// thesis's). Default 8.4, as `dvct` (half a diffuse cone's half angle): region FLIP on
-    /// lavapipe desk-bunny 0.1617 → 0.1559, cornell 0.2551 → 0.2533, desk-spot-virtual
-    /// 0.1155 → 0.1149 (17°: desk-bunny 0.1462 but desk-spot-virtual 0.1306).
+    /// lavapipe desk-bunny 0.1617 → 0.1558, cornell 0.2551 → 0.2533, cornell-vb 0.2086 →
+    /// 0.2053 (17°: desk-bunny 0.1462 but desk-spot-virtual 0.1155 → 0.1306).
     pub sharp_probe_shadows_deg: f32,
 }
 

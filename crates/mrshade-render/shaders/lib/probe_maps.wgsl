@@ -3,7 +3,7 @@
 // shader binds, in one group: probe_lights (array<Light>), probe_clip_from_world
 // (array<mat4x4f>), probe_rsm (array<RsmTexel>), probe_pairs (array<vec4u>: real-only layer,
 // virtual-only layer, light, the light's angular radius as f32 bits) and probe_info (vec4u:
-// lights, map side, shadow resolution).
+// lights, map side, shadow resolution). Needs shaders/lib/probe_light.wgsl before it.
 
 // Where `p` falls in the map of `layer`: its texel, or -1 outside the map.
 fn probe_map_texel(layer: u32, p: vec3f) -> i32 {

@@ -86,16 +86,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         let model = diffuse * max(volume_irradiance(VOLUME_MU, s.position, s.normal), vec3f(0.0));
         let change = diffuse * volume_irradiance(VOLUME_DELTA, s.position, s.normal);
         // The probe's sharp lights' shadow of the virtual content, from their maps (the
-        // volume's direct change holds the rest, inject.wgsl); L_r's probe light unshadowed.
+        // volume's direct change holds the rest, inject.wgsl), as the share of the probe's
+        // light it takes (a ratio: raw sums of a bright probe would overflow the f16 targets);
+        // L_r's probe light unshadowed.
+        var taken = vec3f(0.0);
         if (params.scale.y > 0.0) {
             let shadow = probe_map_virtual_shadow(s.position, s.normal, params.scale.y);
-            if (all(shadow.all_weight > vec3f(0.0))) {
-                let all = shadow.all_weight;
-                store_indirect(pixel, model + change, model, all - shadow.blocked, all, all);
-                return;
-            }
+            let total = shadow.all_weight;
+            taken = select(vec3f(0.0), shadow.blocked / total, total > vec3f(0.0));
         }
-        store_indirect(pixel, model + change, model, vec3f(1.0), vec3f(1.0), vec3f(1.0));
+        store_indirect(pixel, model + change, model, vec3f(1.0) - taken, vec3f(1.0), vec3f(1.0));
         return;
     }
     let light = diffuse * max(volume_irradiance(VOLUME_RHO, s.position, s.normal), vec3f(0.0));

@@ -14,16 +14,17 @@
 //   maps): −Φ of the light on the real surface that the virtual one now hides, lobe along the
 //   light's direction, half a cell toward the light, weighted by how broad the light is
 //   (1 − probe_light_sharpness: the merge reads the sharp lights' shadow from their maps,
-//   `dlpv.sharp_probe_shadows_deg`). The positive half, light on the virtual
-//   surface, is left out: propagated along the light it would relight the shadow it casts,
-//   and virtual pixels are shaded directly.
+//   `dlpv.sharp_probe_shadows_deg`; every light when that is 0). The positive half, light on
+//   the virtual surface, is left out: propagated along the light it would relight the shadow
+//   it casts, and virtual pixels are shaded directly.
 // Each is shifted half a cell along its lobe (the thesis's guard against self-illumination)
 // and added to the cell it then lies in (`dlpv.splat = "cell"`, the thesis's) or to the
 // eight around it by trilinear weights, as fixed-point atomics (WGSL has no float atomics).
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
-// Per pair: real-only layer, virtual-only layer, light, unused.
+// Per pair: real-only layer, virtual-only layer, light, and for the probe's lights their
+// angular radius as f32 bits (probe_maps.rs).
 @group(0) @binding(2) var<storage, read> pairs: array<vec4u>;
 @group(0) @binding(3) var<storage, read> lights: array<Light>;
 // Per source, per channel, per cell: four coefficients.

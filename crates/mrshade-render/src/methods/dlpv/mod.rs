@@ -9,7 +9,9 @@
 //! comes from the frame's real-only and virtual-only shadow maps, exact as with every other
 //! method; the probe, which the thesis leaves to other techniques, is split into directional
 //! lights by median cut (`dlpv.probe_lights`) whose maps inject its bounce light and, as the
-//! direct change, its shadow. Texels seen alike by R_ρ and R_μ cancel exactly at injection.
+//! direct change, the shadow of its broad lights; its small bright sources' shadow on real
+//! surfaces is read from their maps in the merge (`dlpv.sharp_probe_shadows_deg`), sharp.
+//! Texels seen alike by R_ρ and R_μ cancel exactly at injection.
 
 mod lights;
 
@@ -231,8 +233,8 @@ impl DlpvMethod {
         );
         let inject = compute_pipeline(device, "dlpv/inject", INJECT_SHADER, &[&inject_layout]);
         // One dispatch per set: its maps' texels, pairs and lights, and (resolution, pairs, 1
-        // if the set's direct change is injected: the probe's shadow; punctual lights' comes
-        // from the shadow maps).
+        // if the set's direct change is injected: the probe's broad lights' shadow; punctual
+        // lights' comes from the shadow maps, the probe's sharp lights' from their maps).
         let inject_set =
             |label: &str, [lights, texels, pairs_buffer]: [&wgpu::Buffer; 3], pairs, resolution, direct| {
                 let size = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
