@@ -235,3 +235,26 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_through_its_maps() 
     let (lo, hi) = (taken.min(volume_taken), taken.max(volume_taken));
     assert!(lo > 0.8 * hi, "the light taken from the floor: maps {taken:.3}, volume {volume_taken:.3}");
 }
+
+#[test]
+fn the_model_of_the_photo_holds_the_real_scenes_shadow_of_the_probe() {
+    // The same sun over a real floor, now with a real cube (10 cm) in its light and a small
+    // virtual one beside it (for the volume and the maps): the floor in the real cube's sun
+    // shadow has lost that light in the photo already, so the model of the photo the α-scaled
+    // composite divides by (L_r) must have lost it too, and both solutions alike (the real
+    // shadow is no change). Unshadowed, L_r was the same in the shadow as beside it (1.000);
+    // shadowed 0.507: the sky and the volume's bounce light from the sunlit floor remain.
+    let mut s = Setup::sun_over_floor();
+    s.cube([0.0, 0.05, -0.1], 0.05, true);
+    s.cube([0.2, 0.03, -0.1], 0.03, false);
+    s.top_toml = "method = \"dlpv\"\n".into();
+    s.extra_toml += "[dlpv]\nextent = 4.0\nresolution = 8\n";
+    let r = s.render();
+    let (shadow, beside) = (r.floor_pixel(Vec3::new(0.0, 0.0, 0.03)), r.floor_pixel(Vec3::new(-0.08, 0.0, 0.0)));
+    let (l_r, l_rv) = (&r.radiance.r.pixels, &r.radiance.rv.pixels);
+    let darker = l_r[shadow][1] / l_r[beside][1];
+    let change = l_rv[shadow][1] / l_r[shadow][1];
+    eprintln!("L_r in the real cube's sun shadow / beside it {darker:.3}; L_rv / L_r there {change:.3}");
+    assert!(darker < 0.65, "the model of the photo keeps the sun in the real shadow: {darker:.3}");
+    assert!((change - 1.0).abs() < 0.05, "the real shadow is taken as a change: {change:.3}");
+}

@@ -84,24 +84,27 @@ fn probe_map_visibility(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapVisibil
     return out;
 }
 
-// The probe's light that the virtual content alone takes from a real surface point, from the
-// lights up to `sharp_below` (weighted as in probe_map_visibility): Σ w·V_r·(1 − V_v), and
-// Σ E_k·⟨n, l_k⟩₊ over every light. The virtual-only map is read first: where it shows no
-// blocker (most of a frame) the real-only one is not read.
-struct ProbeMapShadow {
+// The probe's light at a real surface point, over every light: Σ E_k·⟨n, l_k⟩₊·V_r (the real
+// scene's own shadow, which a model of the photo needs: the walls of a room hold much of a
+// probe's light back) and Σ E_k·⟨n, l_k⟩₊; of the lights up to `sharp_below` (weighted as in
+// probe_map_visibility; none with 0), the light the virtual content alone takes,
+// Σ w·V_r·(1 − V_v). The virtual-only map is read only for those lights.
+struct ProbeMapRealLight {
+    visible_r: vec3f,
     blocked: vec3f,
     all_weight: vec3f,
 }
 
-fn probe_map_virtual_shadow(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapShadow {
-    var out = ProbeMapShadow(vec3f(0.0), vec3f(0.0));
+fn probe_map_real_light(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapRealLight {
+    var out = ProbeMapRealLight(vec3f(0.0), vec3f(0.0), vec3f(0.0));
     for (var i = 0u; i < probe_info.x; i++) {
         let k = probe_map_light(i, p, n, sharp_below);
         out.all_weight += k.e;
-        if (all(k.w == vec3f(0.0))) { continue; }
-        if (!probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.q, k.l, k.bias)) { continue; }
+        if (all(k.e == vec3f(0.0))) { continue; }
         if (probe_map_blocked(probe_map_texel(k.pair.x, k.q), k.q, k.l, k.bias)) { continue; }
-        out.blocked += k.w;
+        out.visible_r += k.e;
+        if (sharp_below <= 0.0 || all(k.w == vec3f(0.0))) { continue; }
+        if (probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.q, k.l, k.bias)) { out.blocked += k.w; }
     }
     return out;
 }

@@ -85,17 +85,19 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (is_real(flags)) {
         let model = diffuse * max(volume_irradiance(VOLUME_MU, s.position, s.normal), vec3f(0.0));
         let change = diffuse * volume_irradiance(VOLUME_DELTA, s.position, s.normal);
-        // The probe's sharp lights' shadow of the virtual content, from their maps (the
-        // volume's direct change holds the rest, inject.wgsl), as the share of the probe's
-        // light it takes (a ratio: raw sums of a bright probe would overflow the f16 targets);
-        // L_r's probe light unshadowed.
-        var taken = vec3f(0.0);
-        if (params.scale.y > 0.0) {
-            let shadow = probe_map_virtual_shadow(s.position, s.normal, params.scale.y);
-            let total = shadow.all_weight;
-            taken = select(vec3f(0.0), shadow.blocked / total, total > vec3f(0.0));
-        }
-        store_indirect(pixel, model + change, model, vec3f(1.0) - taken, vec3f(1.0), vec3f(1.0));
+        // The probe's light shadowed by the real scene in both solutions (walls hold some of it
+        // back: unshadowed in L_r, the model of the photo in cornell had 1.58 / 1.64 / 1.46 times
+        // the photo's light instead of 1.43 / 1.46 / 1.17, and the α-scaled composite weakened
+        // every change by as much; most of the rest is V_μ's self-illumination, spec §2.12.9),
+        // and in L_rv also by the virtual content's shadow of its sharp lights (up to
+        // `dlpv.sharp_probe_shadows_deg`; the volume's direct change holds the rest,
+        // inject.wgsl). As shares of the probe's light: raw sums of a bright probe would
+        // overflow the f16 targets.
+        let probe = probe_map_real_light(s.position, s.normal, params.scale.y);
+        let total = probe.all_weight;
+        let env_r = select(vec3f(1.0), probe.visible_r / total, total > vec3f(0.0));
+        let taken = select(vec3f(0.0), probe.blocked / total, total > vec3f(0.0));
+        store_indirect(pixel, model + change, model, env_r - taken, env_r, vec3f(1.0));
         return;
     }
     let light = diffuse * max(volume_irradiance(VOLUME_RHO, s.position, s.normal), vec3f(0.0));
