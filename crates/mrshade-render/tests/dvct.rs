@@ -347,7 +347,10 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
     // seams of the 32³ voxels, which single pixels show and blocks average (up to an eighth of
     // the brightest indirect light with blocks 3.2 cm wide: 2 × 2 pixels of a 64² image, 4 × 4
     // of a 128² one; cones that start one voxel off the surface see its seams more sharply
-    // than the two voxels they started at before, 0.114 → 0.127 at the 99th percentile).
+    // than the two voxels they started at before, 0.114 → 0.127 at the 99th percentile). The
+    // cones turn by trace texel (cones.wgsl `cone_turn`), pixel by pixel when traced per pixel:
+    // that interleaving differs between the two by design (visibility mean 0.009 → 0.011, 99th
+    // percentile 0.047 → 0.051; light mean 0.026 → 0.029 at 4 × 4).
     let render = |size: u32, block: u32| {
         let mut s = Setup::top_down(size);
         s.probe = Some([0.8, 0.8, 0.8]);
@@ -376,9 +379,9 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
         eprintln!(
             "{block} × {block}: probe visibility: mean, 99th percentile, max |Δ| {vis:.3?}; indirect light {light:.3?}"
         );
-        assert!(vis.0 < 0.01 && vis.1 < 0.05, "{block} × {block}: probe visibility: {vis:?}");
+        assert!(vis.0 < 0.015 && vis.1 < 0.06, "{block} × {block}: probe visibility: {vis:?}");
         assert!(
-            light.0 < 0.03 && light.1 < 0.14,
+            light.0 < 0.035 && light.1 < 0.14,
             "{block} × {block}: indirect light (share of its largest value): {light:?}"
         );
     }

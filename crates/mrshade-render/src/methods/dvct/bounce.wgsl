@@ -34,13 +34,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         // A real proxy's side that matters is the one facing the virtual content (the
         // volume's centre): a room's walls gather inward whichever way their normals point.
         s.normal = select(-s.normal, s.normal, dot(s.normal, toward_centre(s.position)) >= 0.0);
-        let e = gather_diffuse(s.position, s.normal, bounce_spacing());
+        // Turning the voxels' cones by voxel changed nothing (their mipmaps blend them anyway).
+        let e = gather_diffuse(s.position, s.normal, bounce_spacing(), 0.0);
         rv += vec4f(s.albedo / PI * (e.rv + e.env_rv), 0.0);
         r += vec4f(s.albedo / PI * (e.r + e.env_r), 0.0);
     }
     if (virt != 0u) {
         let s = voxel_surface(voxel_triangle(virt), centre);
-        let e = gather_diffuse(s.position, s.normal, bounce_spacing());
+        let e = gather_diffuse(s.position, s.normal, bounce_spacing(), 0.0);
         rv = vec4f(first_rv.rgb + s.albedo / PI * (e.rv + e.env_rv), 1.0);
     }
     textureStore(out_rv, id, rv);

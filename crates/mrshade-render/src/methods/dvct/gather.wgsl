@@ -64,7 +64,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     let s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
-    let e = gather_diffuse(s.position, s.normal, pixel_spacing());
+    let e = gather_diffuse(s.position, s.normal, pixel_spacing(), cone_turn(texel));
     var glossy = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0));
     if (!is_traced(m)) {
         let d = reflect(-s.view, s.normal);
