@@ -206,12 +206,17 @@ fn probe_occlusion(hit: Cone) -> vec2f {
 
 // The nine diffuse cones of [CNS+11] (spec §2.13.4): the normal and eight around it at 45°
 // and 55°, weighted by their cosines so that the weights sum to π (a uniform radiance L
-// gives the irradiance πL), the eight turned by `turn` (radians) about the normal.
+// gives the irradiance πL), the eight placed in the tangent frame `tb` (cones_frame).
 const DIFFUSE_CONES: u32 = 9u;
 
-fn diffuse_cone(n: vec3f, k: u32, turn: f32) -> vec4f {
+// The tangent frame of normal `n` turned by `turn` (radians) about it: built once per gather,
+// not once per cone.
+fn cones_frame(n: vec3f, turn: f32) -> mat2x3f {
     let t = tangent_frame(n);
-    let tb = mat2x3f(cos(turn) * t[0] + sin(turn) * t[1], cos(turn) * t[1] - sin(turn) * t[0]);
+    return mat2x3f(cos(turn) * t[0] + sin(turn) * t[1], cos(turn) * t[1] - sin(turn) * t[0]);
+}
+
+fn diffuse_cone(n: vec3f, tb: mat2x3f, k: u32) -> vec4f {
     let offsets = array<vec2f, 9>(
         vec2f(0.0, 0.0), vec2f(1.0, 0.0), vec2f(-1.0, 0.0), vec2f(0.0, 1.0), vec2f(0.0, -1.0),
         vec2f(1.0, 1.0), vec2f(-1.0, 1.0), vec2f(1.0, -1.0), vec2f(-1.0, -1.0),
@@ -255,10 +260,10 @@ fn cone_turn(texel: vec2i) -> f32 {
     return 0.3926991 * f32((texel.x & 1) + 2 * (texel.y & 1));
 }
 
-// What the nine diffuse cones of a surface at `p` (normal `n`) gather, turned by `turn`: the irradiance of both
-// solutions' bounce light, and the probe's irradiance as each solution's cones let it through
-// (per channel: Σw·V_rv, Σw·V_r) and unoccluded (Σw), w being a cone's weight times the
-// probe's radiance in its direction.
+// What the nine diffuse cones of a surface at `p` (normal `n`) gather, turned by `turn`: the
+// irradiance of both solutions' bounce light, and the probe's irradiance as each solution's
+// cones let it through (per channel: Σw·V_rv, Σw·V_r) and unoccluded (Σw), w being a cone's
+// weight times the probe's radiance in its direction.
 struct Gathered {
     rv: vec3f,
     r: vec3f,
@@ -270,8 +275,9 @@ struct Gathered {
 fn gather_diffuse(p: vec3f, n: vec3f, spacing: f32, turn: f32) -> Gathered {
     var out = Gathered(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
     let o = cone_origin(p, n);
+    let tb = cones_frame(n, turn);
     for (var k = 0u; k < DIFFUSE_CONES; k++) {
-        let c = diffuse_cone(n, k, turn);
+        let c = diffuse_cone(n, tb, k);
         let hit = trace_cone(o, c.xyz, params.cone.x, spacing, voxel_side(), n);
         out.rv += c.w * hit.rv.rgb;
         out.r += c.w * hit.r.rgb;
