@@ -164,12 +164,21 @@ fn volume_level(r: &common::Rendered, texture: &wgpu::Texture, level: u32) -> Ve
     texels.iter().map(|t| t.map(|c| c.to_f32())).collect()
 }
 
+/// A level of one way of a volume's chain (Volume::chains: both ways side by side along x,
+/// towards + first), `side`³ texels indexed (z · side + y) · side + x.
+fn chain_way(r: &common::Rendered, chain: &wgpu::Texture, level: u32, towards_low: bool) -> Vec<[f32; 4]> {
+    let texels = volume_level(r, chain, level - 1);
+    let side = (chain.height() >> (level - 1)).max(1) as usize;
+    let offset = if towards_low { side } else { 0 };
+    (0..side * side * side).map(|i| texels[(i / side) * 2 * side + offset + i % side]).collect()
+}
+
 #[test]
 fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
-    // A real floor, one voxel thick in the volume: the chain seen along its normal (y) keeps
-    // it opaque at every level, the chains seen edge-on (x, z) thin it by half a level (one
-    // mean of the three made it half as opaque per level: wide cones saw the probe through
-    // the cornell walls).
+    // A real floor, one voxel thick in the volume: the chains seen along its normal (±y) keep
+    // it opaque at every level, the chains seen edge-on (±x, ±z) thin it by half a level (one
+    // mean of the three axes made it half as opaque per level: wide cones saw the probe
+    // through the cornell walls).
     let mut s = Setup::top_down(16);
     s.plane(2.0, 0.0, 0.8, true).cube([0.0, 0.1, 0.0], 0.1, false);
     dvct(&mut s, 32);
@@ -177,36 +186,68 @@ fn a_wall_one_voxel_thick_stays_opaque_along_its_normal_at_every_level() {
     let method = dvct_method(&r);
     let res = method.params().info.x;
     for level in 1..mrshade_render::methods::dvct::levels(res) {
-        let side = res >> level;
-        // Per axis chain, the most opaque cell of the column through the volume's centre.
-        let max_alpha: Vec<f32> = method
-            .volumes()
-            .r
-            .axes
-            .iter()
-            .map(|axis| {
-                let texels = volume_level(&r, axis, level - 1);
-                let centre = side / 2;
-                (0..side).map(|y| texels[((centre * side + y) * side + centre) as usize][3]).fold(0.0, f32::max)
-            })
-            .collect();
-        assert!(max_alpha[1] > 0.99, "level {level}: the floor seen along y has opacity {}", max_alpha[1]);
-        for a in [0, 2] {
-            assert!(max_alpha[a] < 0.6, "level {level}: the floor seen edge-on has opacity {}", max_alpha[a]);
+        let side = (res >> level) as usize;
+        for towards_low in [false, true] {
+            // Per axis chain, the most opaque cell of the column through the volume's centre.
+            let max_alpha: Vec<f32> = method
+                .volumes()
+                .r
+                .chains
+                .iter()
+                .map(|chain| {
+                    let texels = chain_way(&r, chain, level, towards_low);
+                    let centre = side / 2;
+                    (0..side).map(|y| texels[(centre * side + y) * side + centre][3]).fold(0.0, f32::max)
+                })
+                .collect();
+            assert!(max_alpha[1] > 0.99, "level {level}: the floor seen along y has opacity {}", max_alpha[1]);
+            for a in [0, 2] {
+                assert!(max_alpha[a] < 0.6, "level {level}: the floor seen edge-on has opacity {}", max_alpha[a]);
+            }
         }
     }
 }
 
+/// The voxels' normals of a render (VoxelNormals), decoded as mips.wgsl reads them.
+fn voxel_normals(r: &common::Rendered, texture: &wgpu::Texture) -> Vec<Vec3> {
+    let bytes = mrshade_gpu::readback::read_volume_level(&r.ctx, texture, 0).unwrap();
+    let snorm = |b: u8| (b as i8 as f32 / 127.0).max(-1.0);
+    bytes.chunks_exact(4).map(|t| Vec3::new(snorm(t[0]), snorm(t[1]), snorm(t[2]))).collect()
+}
+
+#[test]
+fn a_lit_floor_shows_its_light_to_cones_from_above_not_from_below() {
+    // The coarse levels hold each voxel's light as the cones travelling along their chain
+    // see it: the sunlit real floor's from above (the y chain's way towards −), none from
+    // below (towards +), through the floor. Isotropic voxels showed the lit top of a block to
+    // the floor beside it, and a lit face behind a dim one to the floor in front.
+    let mut s = Setup::sun_over_floor();
+    s.cube([0.0, 0.1, 0.0], 0.1, false);
+    dvct(&mut s, 32);
+    let r = s.render();
+    let method = dvct_method(&r);
+    let chain_y = &method.volumes().r.chains[1];
+    for level in 1..mrshade_render::methods::dvct::levels(method.params().info.x) {
+        let brightest = |towards_low| {
+            let texels = chain_way(&r, chain_y, level, towards_low);
+            texels.iter().map(|t| t[0].max(t[1]).max(t[2])).fold(0.0, f32::max)
+        };
+        let (from_above, from_below) = (brightest(true), brightest(false));
+        assert!(from_above > 1e-3, "level {level}: the floor seen from above is dark ({from_above})");
+        assert!(from_below <= 1e-3 * from_above, "level {level}: the floor seen from below shows {from_below}");
+    }
+}
+
 /// mips.wgsl's parent on the CPU: along `axis`, each pair of children composited front to
-/// back (the front one nearer the volume's centre, the high one when `nearer_high`), the four
-/// columns averaged.
-fn parent_along(children: [[f32; 4]; 8], axis: usize, nearer_high: bool) -> [f32; 4] {
+/// back as a cone travelling towards + meets them (towards −, the high one in front, when
+/// `towards_low`), the four columns averaged.
+fn parent_along(children: [[f32; 4]; 8], axis: usize, towards_low: bool) -> [f32; 4] {
     let over = |f: [f32; 4], b: [f32; 4]| std::array::from_fn::<f32, 4, _>(|c| f[c] + (1.0 - f[3]) * b[c]);
     let bit = 1 << axis;
     let mut sum = [0.0; 4];
     for k in (0..8).filter(|k| k & bit == 0) {
         let (low, high) = (children[k], children[k | bit]);
-        let p = if nearer_high { over(high, low) } else { over(low, high) };
+        let p = if towards_low { over(high, low) } else { over(low, high) };
         (0..4).for_each(|c| sum[c] += 0.25 * p[c]);
     }
     sum
@@ -215,8 +256,10 @@ fn parent_along(children: [[f32; 4]; 8], axis: usize, nearer_high: bool) -> [f32
 #[test]
 fn every_level_of_the_anisotropic_chains_is_its_finer_levels_parents() {
     // Each level read back must be the CPU's parents of the finer one read back, to the
-    // volumes' half-float precision, down to the last 1³: the first from the voxels (read once
-    // for the three chains, mips.wgsl `cs_base`), the others from their own chain.
+    // volumes' half-float precision, down to the last 1³, for both ways of each axis: the
+    // first from the voxels (read once for the three chains of a way, as the cones
+    // travelling that way see them: mips.wgsl `cs_base`, `facing`), the others from their own
+    // chain.
     let mut s = Setup::top_down(16);
     s.plane(2.0, 0.0, 0.8, true).cube([0.05, 0.1, -0.03], 0.1, false).cube([-0.12, 0.05, 0.1], 0.05, true);
     dvct(&mut s, 32);
@@ -224,31 +267,41 @@ fn every_level_of_the_anisotropic_chains_is_its_finer_levels_parents() {
     let method = dvct_method(&r);
     let res = method.params().info.x as usize;
     let volumes = method.volumes();
-    for volume in [&volumes.rv, &volumes.r] {
+    for (volume, normals) in [&volumes.rv, &volumes.r].into_iter().zip(&method.normals().textures) {
         let base = volume_level(&r, &volume.base, 0);
-        let mut finer = [base.clone(), base.clone(), base];
+        let normals = voxel_normals(&r, normals);
         let mut lit = 0;
-        for level in 1..mrshade_render::methods::dvct::levels(res as u32) {
-            let side = res >> level;
-            for (axis, texture) in volume.axes.iter().enumerate() {
-                let gpu = volume_level(&r, texture, level - 1);
-                for (i, texel) in gpu.iter().enumerate() {
-                    let id = [i % side, (i / side) % side, i / (side * side)];
-                    let children = std::array::from_fn(|k| {
-                        let c = [0, 1, 2].map(|a| 2 * id[a] + ((k >> a) & 1));
-                        finer[axis][(c[2] * 2 * side + c[1]) * 2 * side + c[0]]
-                    });
-                    let want = parent_along(children, axis, 2 * id[axis] < side);
-                    for c in 0..4 {
-                        let tolerance = 2e-3 * want[c].abs() + 1e-4;
-                        assert!(
-                            (texel[c] - want[c]).abs() <= tolerance,
-                            "level {level} axis {axis} texel {id:?}: {texel:?}, the CPU's {want:?}"
-                        );
+        for (axis, chain) in volume.chains.iter().enumerate() {
+            for towards_low in [false, true] {
+                // The first level sees each voxel's light as its cones do.
+                let e = Vec3::AXES[axis] * if towards_low { -1.0 } else { 1.0 };
+                let seen = |(t, n): (&[f32; 4], &Vec3)| {
+                    let f = (1.0 - 2.0 * n.dot(e)).clamp(0.0, 1.0);
+                    [t[0] * f, t[1] * f, t[2] * f, t[3]]
+                };
+                let mut finer: Vec<[f32; 4]> = base.iter().zip(&normals).map(seen).collect();
+                for level in 1..mrshade_render::methods::dvct::levels(res as u32) {
+                    let side = res >> level;
+                    let gpu = chain_way(&r, chain, level, towards_low);
+                    for (i, texel) in gpu.iter().enumerate() {
+                        let id = [i % side, (i / side) % side, i / (side * side)];
+                        let children = std::array::from_fn(|k| {
+                            let c = [0, 1, 2].map(|a| 2 * id[a] + ((k >> a) & 1));
+                            finer[(c[2] * 2 * side + c[1]) * 2 * side + c[0]]
+                        });
+                        let want = parent_along(children, axis, towards_low);
+                        for c in 0..4 {
+                            let tolerance = 2e-3 * want[c].abs() + 1e-4;
+                            assert!(
+                                (texel[c] - want[c]).abs() <= tolerance,
+                                "level {level} axis {axis} towards − {towards_low} texel {id:?}: {texel:?}, \
+                                 the CPU's {want:?}"
+                            );
+                        }
+                        lit += (want[3] > 0.0) as usize;
                     }
-                    lit += (want[3] > 0.0) as usize;
+                    finer = gpu;
                 }
-                finer[axis] = gpu;
             }
         }
         assert!(lit > 20, "the chains hold almost nothing ({lit} texels)");

@@ -56,9 +56,10 @@ pub struct DvctSettings {
     /// Whether real voxels whose surface the camera sees take their light from the photo (with
     /// the virtual content's change on top) rather than from their own two bounces: the photo
     /// holds every bounce of the real scene's light (spec §2.11: "in practice Σ T_μ^i L_e is the
-    /// camera image"), where the voxels' own bounces hold about 70 % of a cornell wall's. The
-    /// volumes are then lit again when the photo or the camera changes (a stream's frames).
-    /// Default true.
+    /// camera image"), where the voxels' own bounces hold about 70 % of a cornell wall's; both
+    /// bounces' (the second gathers the first). The last bounce's voxels take a new photo or
+    /// camera (a stream's frames) at once; the second bounce gathers the photo of the frame the
+    /// scene's light or content last changed in. Default true.
     pub photo_voxels: bool,
     /// Directional lights the probe is split into (median cut; 0 or a power of two up to 64)
     /// whose real-only and virtual-only maps around the volume shadow the probe's light on

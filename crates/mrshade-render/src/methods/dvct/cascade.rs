@@ -4,7 +4,7 @@
 //! `dvct.outer_resolution` voxels per side, that cones go on through when they leave the first
 //! (cones.wgsl).
 
-use super::volume::{self, RawPair, VolumePair, VolumeParams, levels};
+use super::volume::{self, RawPair, VolumePair, VolumeParams, VoxelNormals, levels};
 use crate::methods::around::place;
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::settings::DvctSettings;
@@ -30,6 +30,9 @@ pub struct Cascade {
     pub second: Option<VolumePair>,
     /// With two bounces and `dvct.photo_voxels`: the second bounce's light before the photo's.
     pub raw: Option<RawPair>,
+    /// Per voxel, the side of its surface that sends out its light in each solution (rv, r):
+    /// the light pass writes them, the mipmaps read them (mips.wgsl).
+    pub normals: VoxelNormals,
 }
 
 impl Cascade {
@@ -70,7 +73,8 @@ impl Cascade {
         let second = (settings.bounces >= 2).then(|| VolumePair::new(device, &format!("{label}/second_bounce"), res));
         let raw = (second.is_some() && settings.photo_voxels)
             .then(|| RawPair::new(device, &format!("{label}/second_bounce_raw"), res));
-        Self { params, params_buffer, extent, voxels, voxel_words, first, second, raw }
+        let normals = VoxelNormals::new(device, &format!("{label}/normals"), res);
+        Self { params, params_buffer, extent, voxels, voxel_words, first, second, raw, normals }
     }
 
     /// Voxels per side.

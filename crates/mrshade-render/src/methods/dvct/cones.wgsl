@@ -44,7 +44,8 @@ fn volume_span(v: VolumeParams, o: vec3f, d: vec3f) -> vec2f {
 }
 
 // A sample of one solution at level `lod` seen along unit `d`: the voxels themselves at level
-// 0, above it the axis chains (mips.wgsl) with weights w = |d| / Σ|d|, an axis whose weight is
+// 0, above it per axis the chain (mips.wgsl) of the way `d` travels along it (its half of the
+// texture along x, Volume::chains), with weights w = |d| / Σ|d|, an axis whose weight is
 // negligible not read. Opacity is the product of the axes' transmittances raised to their
 // weights, 1 − Π (1 − α_a)^w_a: a wall that the cone crosses obliquely (opaque along its
 // normal, thin edge-on) stops it, where a weighted mean of the opacities let half the probe
@@ -62,16 +63,22 @@ fn sample_volume(
     if (lod <= 0.0) { return textureSampleLevel(base, volume_sampler, uvw, 0.0); }
     let w = abs(d) / (abs(d.x) + abs(d.y) + abs(d.z));
     let level = max(lod - 1.0, 0.0);
+    // Kept half a texel of the coarser level it blends inside its half of the texture, so that
+    // the filter does not reach into the other way's (the volume's border is clamped there,
+    // as the sampler clamps it on the other axes).
+    let coarser = f32(max(textureDimensions(y).y >> u32(ceil(level)), 1u));
+    let u = clamp(uvw.x, 0.5 / coarser, 1.0 - 0.5 / coarser);
     var colour = vec3f(0.0);
     var opacity = 0.0;
     var log_transmit = 0.0;
     for (var a = 0u; a < 3u; a++) {
         if (w[a] < 0.03) { continue; }
+        let at = vec3f(0.5 * (u + select(0.0, 1.0, d[a] < 0.0)), uvw.yz);
         var s: vec4f;
         switch a {
-            case 0u: { s = textureSampleLevel(x, volume_sampler, uvw, level); }
-            case 1u: { s = textureSampleLevel(y, volume_sampler, uvw, level); }
-            default: { s = textureSampleLevel(z, volume_sampler, uvw, level); }
+            case 0u: { s = textureSampleLevel(x, volume_sampler, at, level); }
+            case 1u: { s = textureSampleLevel(y, volume_sampler, at, level); }
+            default: { s = textureSampleLevel(z, volume_sampler, at, level); }
         }
         colour += w[a] * s.rgb;
         opacity += w[a] * s.a;

@@ -6,7 +6,8 @@
 // virtual surface where a voxel has one, else the real one; the real-only volume only real
 // surfaces. Their difference is the thesis's V_Δ = V_ρ − V_μ, exactly (§2.13.2: "identical to
 // the differential"), with no RSM texels racing for a voxel. Premultiplied: rgb·α, α = 1.
-// With a single bounce, real voxels the camera sees then take the photo's light (photo.wgsl).
+// Real voxels the camera sees then take the photo's light (photo.wgsl), and each voxel's
+// normal is kept for the mipmaps (mips.wgsl `facing`).
 
 @group(1) @binding(0) var<uniform> frame: Frame;
 @group(1) @binding(1) var<uniform> shadow_params: ShadowParams;
@@ -24,6 +25,9 @@
 
 @group(3) @binding(0) var out_rv: texture_storage_3d<rgba16float, write>;
 @group(3) @binding(1) var out_r: texture_storage_3d<rgba16float, write>;
+// The side of each solution's surface that sends out its light (mips.wgsl reads it).
+@group(3) @binding(2) var normal_rv: texture_storage_3d<rgba8snorm, write>;
+@group(3) @binding(3) var normal_r: texture_storage_3d<rgba8snorm, write>;
 
 struct Radiance {
     rv: vec3f,
@@ -58,23 +62,34 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let centre = voxel_centre(id);
     var rv = vec4f(0.0);
     var r = vec4f(0.0);
+    var n_r = vec3f(0.0);
     let real = voxels[index * 2u];
     let virt = voxels[index * 2u + 1u];
     if (real != 0u) {
         let s = voxel_surface(voxel_triangle(real), centre);
+        // A real proxy's side that sends out light is the one facing the virtual content (the
+        // volume's centre), as the second bounce gathers it (bounce.wgsl).
+        n_r = select(-s.normal, s.normal, dot(s.normal, toward_centre(s.position)) >= 0.0);
         let lit = first_bounce(s);
         rv = vec4f(lit.rv, 1.0);
         r = vec4f(lit.r, 1.0);
-        if ((params.info.w & VOLUME_SINGLE_BOUNCE) != 0u) {
-            // The last bounce: real voxels the camera sees take the photo's light.
-            let seen = with_photo(rv, r, s.position, s.normal);
-            rv = seen[0];
-            r = seen[1];
-        }
+        // Real voxels the camera sees take the photo's light (with `dvct.photo_voxels`), also
+        // when a second bounce follows: the virtual surfaces' cones there gather the room as
+        // bright as the camera sees it, not its first bounce alone (a cornell wall's direct
+        // light is a fraction of what the photo shows: the blocks' faces took 80–90 % of the
+        // answer's light). The photo pass puts the photo in again after that bounce.
+        let seen = with_photo(rv, r, s.position, s.normal);
+        rv = seen[0];
+        r = seen[1];
     }
+    var n_rv = n_r;
     if (virt != 0u) {
-        rv = vec4f(first_bounce(voxel_surface(voxel_triangle(virt), centre)).rv, 1.0);
+        let s = voxel_surface(voxel_triangle(virt), centre);
+        rv = vec4f(first_bounce(s).rv, 1.0);
+        n_rv = s.normal;
     }
     textureStore(out_rv, id, rv);
     textureStore(out_r, id, r);
+    textureStore(normal_rv, id, vec4f(n_rv, 0.0));
+    textureStore(normal_r, id, vec4f(n_r, 0.0));
 }

@@ -23,7 +23,7 @@ mod shaders;
 mod volume;
 
 pub use shaders::*;
-pub use volume::{RawPair, Volume, VolumePair, VolumeParams, levels};
+pub use volume::{RawPair, Volume, VolumePair, VolumeParams, VoxelNormals, levels};
 
 use cascade::{Cascade, VOXEL_BYTES};
 
@@ -128,13 +128,13 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
     if d.outer_scale > 1.0 {
         sides.push(d.outer_voxels() as u64);
     }
-    let voxels: u64 = sides.iter().map(|r| r.pow(3) * VOXEL_BYTES).sum();
+    let voxels: u64 = sides.iter().map(|&r| r.pow(3) * VOXEL_BYTES + VoxelNormals::bytes(r as u32)).sum();
     let light: u64 = sides.iter().map(|&r| d.bounces as u64 * VolumePair::bytes(r as u32)).sum();
     let raw: u64 =
         if d.bounces >= 2 && d.photo_voxels { sides.iter().map(|&r| RawPair::bytes(r as u32)).sum() } else { 0 };
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
-        ("dvct voxels (dvct.resolution³, dvct.outer_resolution³)", voxels),
+        ("dvct voxels and their normals (dvct.resolution³, dvct.outer_resolution³)", voxels),
         ("dvct light volumes (voxels × bounces per volume, with mips)", light),
         ("dvct second bounce before the photo's light (dvct.photo_voxels)", raw),
         (
@@ -268,21 +268,25 @@ impl DvctMethod {
                 shadow_maps.as_entire_binding(),
             ],
         );
+        // The first bounce's volumes and the voxels' normals (VoxelNormals).
+        let normal_3d = |i| bind::storage_texture_of(i, volume::NORMAL_FORMAT, wgpu::TextureViewDimension::D3);
+        let light_out_layout =
+            bind::layout(device, "dvct/light_out_layout", &[storage_3d(0), storage_3d(1), normal_3d(2), normal_3d(3)]);
         let light_pipeline = compute_pipeline(
             device,
             "dvct/light",
             LIGHT_SHADER,
-            &[&surface_layout, &lights_layout, &probe_textures_layout, &out_layout],
+            &[&surface_layout, &lights_layout, &probe_textures_layout, &light_out_layout],
         );
         let light = cascades
             .iter()
             .map(|c| {
-                let groups = vec![
-                    surface_group(c),
-                    lights_group.clone(),
-                    probe_textures_group.clone(),
-                    out_group(&c.first, "dvct/first_bounce_out_group"),
-                ];
+                let groups = vec![surface_group(c), lights_group.clone(), probe_textures_group.clone(), {
+                    let ([rv, ..], [r, ..]) = (c.first.rv.level(0), c.first.r.level(0));
+                    let [n_rv, n_r] = &c.normals.views;
+                    let resources = [&rv, &r, n_rv, n_r].map(TextureView);
+                    bind::group(device, "dvct/first_bounce_out_group", &light_out_layout, &resources)
+                }];
                 (light_pipeline.clone(), groups)
             })
             .collect();
@@ -304,9 +308,9 @@ impl DvctMethod {
         entries.extend((10..18).map(volume_3d));
         let volume_layout = bind::layout(device, "dvct/volume_layout", &entries);
         let volume_group = |pair: &VolumePair, outer: &VolumePair, outer_params: &wgpu::Buffer, label: &str| {
-            let [rv, r, axes @ ..] = &pair.sampled;
-            let mut resources = vec![TextureView(rv), TextureView(r), Sampler(&sampler)];
-            resources.extend(axes.iter().map(TextureView));
+            let (bases, chains) = pair.sampled.split_at(2);
+            let mut resources = vec![TextureView(&bases[0]), TextureView(&bases[1]), Sampler(&sampler)];
+            resources.extend(chains.iter().map(TextureView));
             resources.push(outer_params.as_entire_binding());
             resources.extend(outer.sampled.iter().map(TextureView));
             bind::group(device, label, &volume_layout, &resources)
@@ -374,23 +378,21 @@ impl DvctMethod {
             }
         }
 
-        // Mipmaps: the three axis chains of one solution per dispatch.
-        let mips_layout = bind::layout(
-            device,
-            "dvct/mips_layout",
-            &[unfiltered_3d(0), unfiltered_3d(1), unfiltered_3d(2), storage_3d(3), storage_3d(4), storage_3d(5)],
-        );
+        // Mipmaps: the chains of one solution per dispatch, with its voxels' normals.
+        let mips_entries: Vec<_> =
+            (0..3).map(unfiltered_3d).chain((3..6).map(storage_3d)).chain([unfiltered_3d(6)]).collect();
+        let mips_layout = bind::layout(device, "dvct/mips_layout", &mips_entries);
         let mips = compute_pipeline(device, "dvct/mips", MIPS_SHADER, &[&mips_layout]);
         let mips_base = compute_pipeline_entry(device, "dvct/mips_base", MIPS_SHADER, "cs_base", &[&mips_layout]);
-        let chain = |pairs: Vec<&VolumePair>| {
+        let chain = |pairs: Vec<(&VolumePair, &VoxelNormals)>| {
             let mut groups = Vec::new();
-            for pair in pairs {
+            for (pair, normals) in pairs {
                 let res = pair.resolution();
                 for level in 1..levels(res) {
-                    for volume in [&pair.rv, &pair.r] {
+                    for (volume, normal) in [&pair.rv, &pair.r].into_iter().zip(&normals.views) {
                         let finer = volume.level(level - 1);
                         let out = volume.level(level);
-                        let resources: Vec<_> = finer.iter().chain(&out).map(TextureView).collect();
+                        let resources: Vec<_> = finer.iter().chain(&out).chain([normal]).map(TextureView).collect();
                         let group = bind::group(device, "dvct/mips_group", &mips_layout, &resources);
                         groups.push(MipDispatch { group, side: res >> level, from_voxels: level == 1 });
                     }
@@ -398,8 +400,8 @@ impl DvctMethod {
             }
             groups
         };
-        let first_mips = chain(cascades.iter().map(|c| &c.first).collect());
-        let second_mips = chain(cascades.iter().filter_map(|c| c.second.as_ref()).collect());
+        let first_mips = chain(cascades.iter().map(|c| (&c.first, &c.normals)).collect());
+        let second_mips = chain(cascades.iter().filter_map(|c| Some((c.second.as_ref()?, &c.normals))).collect());
 
         // The pixels' cones, once per trace texel, then resolved per pixel.
         let inner = &cascades[0];
@@ -448,12 +450,18 @@ impl DvctMethod {
         self.cascades[0].lit()
     }
 
+    /// The normals of the voxels of the volume around the virtual content.
+    pub fn normals(&self) -> &VoxelNormals {
+        &self.cascades[0].normals
+    }
+
     fn record_mips(&self, pass: &mut wgpu::ComputePass<'_>, dispatches: &[MipDispatch]) {
         for d in dispatches {
             pass.set_pipeline(if d.from_voxels { &self.mips_base } else { &self.mips });
             pass.set_bind_group(0, &d.group, &[]);
+            // Both ways of each chain, side by side along x (Volume::chains).
             let n = d.side.div_ceil(4);
-            pass.dispatch_workgroups(n, n, n);
+            pass.dispatch_workgroups((2 * d.side).div_ceil(4), n, n);
         }
     }
 

@@ -7,8 +7,10 @@
 // around them then see the walls and the desk as bright as the camera does. Voxels the camera
 // does not see (behind a real or a virtual surface, outside the frustum, the far side of a
 // wall) keep their computed light. Bound in group 2 with the probe; applied by the light pass
-// when its bounce is the only one, else by the photo pass after the second (photo_pass.wgsl;
-// settings `dvct.photo_voxels`, VolumeParams.info.w).
+// to the first bounce and, with two, by the photo pass after the second (photo_pass.wgsl;
+// settings `dvct.photo_voxels`, VolumeParams.info.w). A new photo or camera alone runs the
+// photo pass: the second bounce keeps the photo's light of the frame it last ran in (it runs
+// again when the scene's light or content changes) — one bounce's lag, at no cost per frame.
 
 @group(2) @binding(8) var gbuffer_depth_motion: texture_2d<f32>;
 @group(2) @binding(9) var gbuffer_normal_roughness: texture_2d<f32>;

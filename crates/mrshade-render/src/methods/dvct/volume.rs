@@ -34,25 +34,36 @@ pub fn levels(resolution: u32) -> u32 {
 }
 
 /// One solution's volume: the voxels themselves and, from the second level on, one prefiltered
-/// chain per axis, each seen along its axis (anisotropic voxels, [CNS+11] §4: a wall one voxel
-/// thick stays opaque to a cone that crosses it at every level, where one mean over the three
-/// axes lets a wide cone see the probe through it).
+/// chain per direction of travel along the axes, each seen by cones travelling that way
+/// (anisotropic voxels, [CNS+11] §4: a wall one voxel thick stays opaque to a cone that
+/// crosses it at every level, where one mean over the three axes lets a wide cone see the probe
+/// through it; and a cone sees the face of a block that faces it, not the one behind it).
 pub struct Volume {
     /// `resolution`³, one level.
     pub base: wgpu::Texture,
-    /// x, y, z: `(resolution/2)`³ with `levels(resolution) − 1` levels.
-    pub axes: [wgpu::Texture; 3],
+    /// Per axis x, y, z, the chains of both ways side by side along x: the cones travelling
+    /// towards + in the first half, towards − in the second (one texture read per axis
+    /// whichever way a cone goes: a branch per way made the lanes of a warp whose cones went
+    /// different ways read both). `resolution × (resolution/2)²` with `levels(resolution) − 1`
+    /// levels.
+    pub chains: [wgpu::Texture; 3],
 }
 
-/// A cubic 3D texture of the volumes' format, `side` voxels and `levels` levels.
-fn volume_texture(device: &wgpu::Device, name: &str, side: u32, levels: u32) -> wgpu::Texture {
+/// A 3D texture of `format`, `width × side × side` voxels and `levels` levels.
+fn volume_texture(
+    device: &wgpu::Device,
+    name: &str,
+    (width, side): (u32, u32),
+    levels: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(name),
-        size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: side },
+        size: wgpu::Extent3d { width, height: side, depth_or_array_layers: side },
         mip_level_count: levels,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D3,
-        format: FORMAT,
+        format,
         usage: wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,
@@ -73,7 +84,7 @@ pub struct RawPair {
 impl RawPair {
     /// Two `resolution`³ textures, labelled `<label>/rv` and `<label>/r`.
     pub fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
-        let texture = |s: &str| volume_texture(device, &format!("{label}/{s}"), resolution, 1);
+        let texture = |s: &str| volume_texture(device, &format!("{label}/{s}"), (resolution, resolution), 1, FORMAT);
         let (rv, r) = (texture("rv"), texture("r"));
         let views = [&rv, &r].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
         Self { rv, r, views }
@@ -85,21 +96,51 @@ impl RawPair {
     }
 }
 
+/// Per voxel, the unit normal of the side of its surface that sends out its light, of each
+/// solution (`rv`: the virtual surface where there is one, else the real; `r`: the real), xyz
+/// in [`NORMAL_FORMAT`].
+pub struct VoxelNormals {
+    /// The real+virtual and the real-only normals.
+    pub textures: [wgpu::Texture; 2],
+    /// Their views.
+    pub views: [wgpu::TextureView; 2],
+}
+
+/// Format of [`VoxelNormals`].
+pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Snorm;
+
+impl VoxelNormals {
+    /// Two `resolution`³ textures, labelled `<label>/rv` and `<label>/r`.
+    pub fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
+        let textures = ["rv", "r"]
+            .map(|s| volume_texture(device, &format!("{label}/{s}"), (resolution, resolution), 1, NORMAL_FORMAT));
+        let views = textures.each_ref().map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        Self { textures, views }
+    }
+
+    /// Bytes of both.
+    pub fn bytes(resolution: u32) -> u64 {
+        2 * (resolution as u64).pow(3) * 4
+    }
+}
+
 impl Volume {
     fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
         let chain = levels(resolution).saturating_sub(1).max(1);
-        let axis = |a: &str| volume_texture(device, &format!("{label}/{a}"), (resolution / 2).max(1), chain);
-        let base = volume_texture(device, &format!("{label}/base"), resolution, 1);
-        Self { base, axes: [axis("x"), axis("y"), axis("z")] }
+        let side = (resolution / 2).max(1);
+        let chains =
+            ["x", "y", "z"].map(|a| volume_texture(device, &format!("{label}/{a}"), (2 * side, side), chain, FORMAT));
+        let base = volume_texture(device, &format!("{label}/base"), (resolution, resolution), 1, FORMAT);
+        Self { base, chains }
     }
 
-    /// Views for sampling: the base, then the three axis chains.
+    /// Views for sampling: the base, then the chains.
     fn sampled(&self) -> [wgpu::TextureView; 4] {
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-        [view(&self.base), view(&self.axes[0]), view(&self.axes[1]), view(&self.axes[2])]
+        [view(&self.base), view(&self.chains[0]), view(&self.chains[1]), view(&self.chains[2])]
     }
 
-    /// Level `level` (from 1) of the three axis chains, or the base three times for level 0.
+    /// Level `level` (from 1) of the chains, or the base three times for level 0.
     pub fn level(&self, level: u32) -> [wgpu::TextureView; 3] {
         let single = |t: &wgpu::Texture, mip: u32| {
             t.create_view(&wgpu::TextureViewDescriptor {
@@ -110,9 +151,9 @@ impl Volume {
             })
         };
         if level == 0 {
-            [0, 1, 2].map(|_| single(&self.base, 0))
+            [(); 3].map(|_| single(&self.base, 0))
         } else {
-            self.axes.each_ref().map(|t| single(t, level - 1))
+            self.chains.each_ref().map(|t| single(t, level - 1))
         }
     }
 }
@@ -125,8 +166,8 @@ pub struct VolumePair {
     /// Real-only volume.
     pub r: Volume,
     /// Views for sampling, in the order of cones.wgsl's bindings: the bases of `rv` and `r`,
-    /// then the axis chains of `rv`, then those of `r`.
-    pub sampled: [wgpu::TextureView; 8],
+    /// then the chains of `rv`, then those of `r`.
+    pub sampled: Vec<wgpu::TextureView>,
 }
 
 impl VolumePair {
@@ -134,9 +175,9 @@ impl VolumePair {
     pub fn new(device: &wgpu::Device, label: &str, resolution: u32) -> Self {
         let rv = Volume::new(device, &format!("{label}/rv"), resolution);
         let r = Volume::new(device, &format!("{label}/r"), resolution);
-        let [rv_base, rv_x, rv_y, rv_z] = rv.sampled();
-        let [r_base, r_x, r_y, r_z] = r.sampled();
-        let sampled = [rv_base, r_base, rv_x, rv_y, rv_z, r_x, r_y, r_z];
+        let [rv_base, rv_chains @ ..] = rv.sampled();
+        let [r_base, r_chains @ ..] = r.sampled();
+        let sampled = [rv_base, r_base].into_iter().chain(rv_chains).chain(r_chains).collect();
         Self { rv, r, sampled }
     }
 
@@ -148,8 +189,8 @@ impl VolumePair {
     /// Bytes of both volumes with their chains.
     pub fn bytes(resolution: u32) -> u64 {
         let voxels = (resolution as u64).pow(3);
-        // The base, and three chains of an eighth of it each, 8/7 with their levels.
-        2 * (voxels * 8 + 3 * voxels * 8 * 8 / 7 / 8)
+        // The base, and three chains of a quarter of it each (both ways), 8/7 with their levels.
+        2 * (voxels * 8 + 3 * voxels * 8 * 8 / 7 / 4)
     }
 }
 
