@@ -13,9 +13,10 @@
 //! texel with racing writes; a voxel that holds both faces of a thin real wall keeps the one
 //! facing the content (voxelize.wgsl); a second bounce is injected (`dvct.bounces`); real
 //! voxels the camera sees take the photo's light (spec §2.11's B ≈ (T_μ² + T_μ)·L_e applied to
-//! the voxels, `dvct.photo_voxels`, photo.wgsl); and the probe's light from its narrower lights
-//! is shadowed through their maps (`probe_maps`, `dvct.probe_lights`) rather than by the nine
-//! wide cones alone (gather.wgsl).
+//! the voxels, `dvct.photo_voxels`, photo.wgsl); the mipmaps are anisotropic, a chain per way
+//! along each axis ([CNS+11]), and a voxel shows its light only on its own side (mips.wgsl);
+//! and the probe's light from its narrower lights is shadowed through their maps
+//! (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl).
 
 mod cascade;
 mod pixels;
