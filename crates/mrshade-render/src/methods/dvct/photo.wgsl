@@ -47,5 +47,8 @@ fn with_photo(rv: vec4f, r: vec4f, p: vec3f, n: vec3f) -> array<vec4f, 2> {
     if ((params.info.w & VOLUME_PHOTO) == 0u) { return array(rv, r); }
     let b = photo_radiance(p, n);
     if (b.w == 0.0) { return array(rv, r); }
-    return array(vec4f(max(b.rgb + rv.rgb - r.rgb, vec3f(0.0)), 1.0), vec4f(b.rgb, 1.0));
+    // With no change (no virtual content), exactly the photo's: b + rv − r rounds, in
+    // whatever order the compiler sums it.
+    let changed = select(max(b.rgb + (rv.rgb - r.rgb), vec3f(0.0)), b.rgb, rv.rgb == r.rgb);
+    return array(vec4f(changed, 1.0), vec4f(b.rgb, 1.0));
 }
