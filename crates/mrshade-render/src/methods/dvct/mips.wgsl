@@ -74,37 +74,61 @@ fn cs_main(@builtin(global_invocation_id) texel: vec3u) {
 }
 
 // How much of a surface's light a cone travelling along unit `e` sees, the surface sending it
-// out on the side of `n`: all of it from that side and edge-on, none from behind (through
+// out on the side of `n` (`n_e` = n·e): all of it from that side and edge-on, none from behind (through
 // the surface), between them a ramp. Isotropic voxels showed a cone from below the lit top
 // of a block, and from in front of a dim face the lit faces behind it, at every coarse level
 // where one voxel holds both: the floor in front of a block's unlit face took 2.5 times the
 // light it sends there (a white cube beside a point light; cones of the base voxels alone
 // agree within 10 %). An empty voxel (n = 0) keeps what it has (nothing).
-fn facing(n: vec3f, e: vec3f) -> f32 { return clamp(1.0 - 2.0 * dot(n, e), 0.0, 1.0); }
+fn facing(n_e: f32) -> f32 { return clamp(1.0 - 2.0 * n_e, 0.0, 1.0); }
 
-// `children` of the voxels with the light a cone travelling along `e` sees of them.
-fn seen_along(children: array<vec4f, 8>, n: array<vec3f, 8>, e: vec3f) -> array<vec4f, 8> {
-    var c = children;
-    for (var k = 0u; k < 8u; k++) { c[k] = vec4f(c[k].rgb * facing(n[k], e), c[k].a); }
-    return c;
+// Of two voxels of a column along the cone's axis (premultiplied, with the component of
+// their normals along the cone's way, n·e), the parent's share the cone sees: each voxel's
+// light as seen from the cone's side, composited front to back.
+fn column(low: vec4f, low_n: f32, high: vec4f, high_n: f32, towards_low: bool) -> vec4f {
+    let a = vec4f(low.rgb * facing(low_n), low.a);
+    let b = vec4f(high.rgb * facing(high_n), high.a);
+    return select(over(a, b), over(b, a), towards_low);
 }
 
-// The first level, from the voxels (bound as all three finer levels): each voxel read once for
-// the three chains of a way (0.02 ms of 0.28 for a bounce's mipmaps of cornell's two volumes
-// on an H200, with one way: most of their time is the small levels' dispatches, not their
-// texels).
+// The first level, from the voxels (bound as all three finer levels): each voxel and its
+// normal read once for the three chains of a way. Written out without arrays: with the eight
+// voxels, their normals and the three chains' copies as arrays (passed to functions, indexed
+// in loops) this pass took 1.1 ms more than the three chains' means of one way had, at 128³
+// on an H200, and 8 ms at 256³ (r21: most of the moving frame's 5.4 ms), where the voxels
+// themselves are 16 reads per parent.
 @compute @workgroup_size(4, 4, 4)
 fn cs_base(@builtin(global_invocation_id) texel: vec3u) {
     if (any(texel >= textureDimensions(out_x))) { return; }
     let c = cell(texel);
     let first = 2u * c.id;
-    let voxels = children_of(finer_x, first);
-    var n: array<vec3f, 8>;
-    for (var k = 0u; k < 8u; k++) {
-        n[k] = textureLoad(normals, first + vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u), 0).xyz;
-    }
-    let way = select(1.0, -1.0, c.towards_low);
-    textureStore(out_x, texel, parent(seen_along(voxels, n, vec3f(way, 0.0, 0.0)), 0u, c.towards_low));
-    textureStore(out_y, texel, parent(seen_along(voxels, n, vec3f(0.0, way, 0.0)), 1u, c.towards_low));
-    textureStore(out_z, texel, parent(seen_along(voxels, n, vec3f(0.0, 0.0, way)), 2u, c.towards_low));
+    let t = c.towards_low;
+    // Child k at first + (k & 1, (k >> 1) & 1, k >> 2); its normal's component along the way.
+    let v0 = textureLoad(finer_x, first, 0);
+    let v1 = textureLoad(finer_x, first + vec3u(1u, 0u, 0u), 0);
+    let v2 = textureLoad(finer_x, first + vec3u(0u, 1u, 0u), 0);
+    let v3 = textureLoad(finer_x, first + vec3u(1u, 1u, 0u), 0);
+    let v4 = textureLoad(finer_x, first + vec3u(0u, 0u, 1u), 0);
+    let v5 = textureLoad(finer_x, first + vec3u(1u, 0u, 1u), 0);
+    let v6 = textureLoad(finer_x, first + vec3u(0u, 1u, 1u), 0);
+    let v7 = textureLoad(finer_x, first + vec3u(1u, 1u, 1u), 0);
+    let way = select(1.0, -1.0, t);
+    let n0 = way * textureLoad(normals, first, 0).xyz;
+    let n1 = way * textureLoad(normals, first + vec3u(1u, 0u, 0u), 0).xyz;
+    let n2 = way * textureLoad(normals, first + vec3u(0u, 1u, 0u), 0).xyz;
+    let n3 = way * textureLoad(normals, first + vec3u(1u, 1u, 0u), 0).xyz;
+    let n4 = way * textureLoad(normals, first + vec3u(0u, 0u, 1u), 0).xyz;
+    let n5 = way * textureLoad(normals, first + vec3u(1u, 0u, 1u), 0).xyz;
+    let n6 = way * textureLoad(normals, first + vec3u(0u, 1u, 1u), 0).xyz;
+    let n7 = way * textureLoad(normals, first + vec3u(1u, 1u, 1u), 0).xyz;
+    // The four columns along each axis, in the order `parent` sums them.
+    let x = column(v0, n0.x, v1, n1.x, t) + column(v2, n2.x, v3, n3.x, t) + column(v4, n4.x, v5, n5.x, t)
+        + column(v6, n6.x, v7, n7.x, t);
+    let y = column(v0, n0.y, v2, n2.y, t) + column(v1, n1.y, v3, n3.y, t) + column(v4, n4.y, v6, n6.y, t)
+        + column(v5, n5.y, v7, n7.y, t);
+    let z = column(v0, n0.z, v4, n4.z, t) + column(v1, n1.z, v5, n5.z, t) + column(v2, n2.z, v6, n6.z, t)
+        + column(v3, n3.z, v7, n7.z, t);
+    textureStore(out_x, texel, x * 0.25);
+    textureStore(out_y, texel, y * 0.25);
+    textureStore(out_z, texel, z * 0.25);
 }
