@@ -566,3 +566,46 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_t
     eprintln!("cones alone: in the sun shadow {cones_shadow:.3}");
     assert!(cones_shadow > shadow_rv + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
 }
+
+#[test]
+fn a_small_balls_bounce_onto_the_floor_around_it_matches_the_path_tracer() {
+    // A white virtual ball (5 cm) on a real grey floor, lit by a real lamp to its −x side, no
+    // probe, no photo: the light it reflects onto the floor around it on the lamp's side and
+    // beside it, 3–15 cm from its surface, against the reference path tracer. A cone passing
+    // the ball meets it sample after sample in the same part of the cone; compositing those
+    // samples as independent layers counted its light 1.5 times here (2–3 times farther out,
+    // 7–15 cm from it: cones.wgsl `cone_seen`).
+    let mut s = Setup::top_down(64);
+    // 35 cm above the floor: 7 mm pixels.
+    s.gltf.patch_node(0, |n| n["translation"] = serde_json::json!([0.0, 0.35, 0.0]));
+    s.plane(2.0, 0.0, 0.5, true);
+    let white = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
+    let ball = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.05, 24), Some(white), true);
+    s.gltf.node(
+        serde_json::json!({"name": "ball", "mesh": ball, "translation": [0.0, 0.05, 0.0], "extras": {"real": false}}),
+    );
+    s.light(serde_json::json!({"type": "point", "intensity": 0.25}), [-0.15, 0.35, 0.0], true);
+    dvct(&mut s, 128);
+    s.extra_toml += "photo_voxels = false\n[reference]\nspp = 128\n";
+    let r = s.render();
+    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
+    let reference = mrshade_reference::render_with(&r.session, None, &caustics, &|_, _| {});
+    let (mut ours, mut theirs) = (0.0, 0.0);
+    for y in 0..64 {
+        for x in 0..64 {
+            let p = r.world_on_plane(x, y, 0.0);
+            let d = (p.x * p.x + p.z * p.z).sqrt();
+            // Around the ball out of its shadow (the lamp is at −x).
+            if !(0.08..0.2).contains(&d) || p.x > 0.0 {
+                continue;
+            }
+            ours += r.l_rv(x, y).x - r.l_r(x, y).x;
+            theirs += reference.l_rv.get(x, y)[0] - reference.l_r.get(x, y)[0];
+        }
+    }
+    eprintln!("the ball's light on the floor around it: ours {ours:.4}, the path tracer's {theirs:.4}");
+    assert!(theirs > 0.0, "the reference sees the ball's light: {theirs}");
+    let ratio = ours / theirs;
+    // Independent layers: 1.49 here; the mean of the two bounds 1.23.
+    assert!((0.7..1.35).contains(&ratio), "the ball sends {ratio:.2} times the path tracer's light onto the floor");
+}
