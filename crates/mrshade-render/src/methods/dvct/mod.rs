@@ -15,8 +15,11 @@
 //! voxels the camera sees take the photo's light (spec §2.11's B ≈ (T_μ² + T_μ)·L_e applied to
 //! the voxels, `dvct.photo_voxels`, photo.wgsl); the mipmaps are anisotropic, a chain per way
 //! along each axis ([CNS+11]), and a voxel shows its light only on its own side (mips.wgsl);
-//! and the probe's light from its narrower lights is shadowed through their maps
-//! (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl).
+//! the probe's light from its narrower lights is shadowed through their maps
+//! (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl);
+//! and the virtual content's change along a cone, which covers the same part of the cone
+//! sample after sample, lies between compounding its samples and taking the most opaque one
+//! (cones.wgsl `probe_occlusion`, `cone_seen`).
 
 mod cascade;
 mod pixels;
