@@ -31,11 +31,10 @@ struct Cone {
     r: vec4f,
     // The most opaque single sample of each solution (rv, r).
     peak: vec2f,
-    // Radiance seen along the cone if all its samples covered the same part of it, each adding
-    // only the opacity it has beyond the most opaque sample before it (`peak`): the correlated
-    // bound of `rv.rgb` and `r.rgb`, which hold the independent one (cone_seen).
-    correlated_rv: vec3f,
-    correlated_r: vec3f,
+    // rv − r of the radiance seen along the cone if all its samples covered the same part of
+    // it, each adding only the opacity it has beyond the most opaque sample before it (`peak`):
+    // the correlated bound of the change, whose independent one is `rv.rgb − r.rgb` (cone_seen).
+    correlated_change: vec3f,
 }
 
 // Enter and exit distances of the ray `o + t·d` through the volume `v` (exit < enter: missed).
@@ -124,7 +123,8 @@ fn stretch(s: vec4f, k: f32) -> vec4f {
 // differ nowhere else), the pixels that the outer volume alone holds costing no more than
 // without it.
 fn trace_cone(o: vec3f, d: vec3f, aperture: f32, spacing: f32, start: f32, n: vec3f) -> Cone {
-    var out = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0), vec3f(0.0), vec3f(0.0));
+    // Zero-initialised: nothing seen yet.
+    var out: Cone;
     let lift = CONE_START_VOXELS * voxel_side();
     let exit = march(&out, params, true, o, d, aperture, spacing, start, n, lift);
     let lo = params.origin.xyz;
@@ -191,8 +191,7 @@ fn march(
         }
         // The most opaque single sample is one sample's (probe_occlusion), however long the
         // step; so is what a sample adds beyond it.
-        (*out).correlated_rv += beyond(s_rv, (*out).peak.x);
-        (*out).correlated_r += beyond(s_r, (*out).peak.y);
+        (*out).correlated_change += beyond(s_rv, (*out).peak.x) - beyond(s_r, (*out).peak.y);
         (*out).peak = max((*out).peak, vec2f(s_rv.a, s_r.a));
         if (step > side) {
             s_rv = stretch(s_rv, step / side);
@@ -231,18 +230,18 @@ fn probe_occlusion(hit: Cone) -> vec2f {
 // which covers the same part of the cone sample after sample while the cone grows past it:
 // compounded as independent layers, a white ball's bounce onto the floor beside it was 1.9–2.9
 // times the path tracer's. The change lies between the independent bound and the correlated
-// one (each sample adds only what it covers beyond the most opaque before it: correlated_*,
-// `peak`); like the probe's occlusion (probe_occlusion, whose change is that mean already),
-// its light is now the mean of the two: the ball's bounce 0.9–1.4 times the answer's, a
-// virtual wall's beside it 0.8–0.96 (1.0–1.1 before; a wide face is nearer the independent
-// bound). Every change takes it, also where only the light differs (a real surface in a
-// virtual object's shadow, a virtual lamp's light on the desk): with the mean applied only
-// where the samples' opacities differ, cornell's gain was lost (0.1555). Region FLIP
-// (lavapipe, 640×480): cornell 0.1425 → 0.1307, two Cornell variants
-// 0.1384 → 0.1302 and 0.1263 → 0.1201, desk-bunny 0.0729 → 0.0787, desk-spot-virtual 0.0962 →
+// one (each sample adds only what it covers beyond the most opaque before it:
+// correlated_change, `peak`); like the probe's occlusion (probe_occlusion, whose change is
+// that mean already), its light is now the mean of the two: the ball's bounce 0.9–1.4 times
+// the answer's, a virtual wall's beside it 0.8–0.96 (1.0–1.1 before; a wide face is nearer
+// the independent bound). Every change takes it, also where only the light differs (a real
+// surface in a virtual object's shadow, a virtual lamp's light on the desk): with the mean
+// applied only where the samples' opacities differ, cornell's gain was lost (0.1555). Region
+// FLIP (lavapipe, 640×480): cornell 0.1425 → 0.1307, two Cornell variants 0.1384 → 0.1302
+// and 0.1263 → 0.1201, desk-bunny 0.0729 → 0.0787, desk-spot-virtual 0.0962 →
 // 0.1011, desk-spot-real 0.0820 unchanged. The correlated bound for both the light and the
 // probe's occlusion scored better still on five of the six (cornell 0.1248) but left the
-// floor beside a 20 cm cube 0.07 too much of its sky (ray casting: tests/dvct.rs).
+// floor beside a 20 cm cube 0.07 too much of its sky (ray casting: tests/dvct_cones.rs).
 struct ConeSeen {
     rv: vec3f,
     r: vec3f,
@@ -250,7 +249,7 @@ struct ConeSeen {
 }
 
 fn cone_seen(hit: Cone) -> ConeSeen {
-    let change = mix(hit.rv.rgb - hit.r.rgb, hit.correlated_rv - hit.correlated_r, 0.5);
+    let change = mix(hit.rv.rgb - hit.r.rgb, hit.correlated_change, 0.5);
     return ConeSeen(max(hit.r.rgb + change, vec3f(0.0)), hit.r.rgb, probe_occlusion(hit));
 }
 

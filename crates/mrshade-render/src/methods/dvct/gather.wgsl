@@ -65,7 +65,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
     let e = gather_diffuse(s.position, s.normal, pixel_spacing(), cone_turn(texel));
-    var glossy = Cone(vec4f(0.0), vec4f(0.0), vec2f(0.0), vec3f(0.0), vec3f(0.0));
+    // Zero-initialised: no glossy light on traced surfaces.
+    var glossy: Cone;
     if (!is_traced(m)) {
         let d = reflect(-s.view, s.normal);
         let aperture = specular_aperture(s.roughness);

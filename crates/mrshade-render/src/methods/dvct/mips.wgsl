@@ -40,11 +40,14 @@ fn parent(children: array<vec4f, 8>, axis: u32, towards_low: bool) -> vec4f {
     return sum * 0.25;
 }
 
-// The eight children of a parent, `first` the texel of the one with the lowest coordinates.
+// The texel of child k of a parent, `first` the one with the lowest coordinates.
+fn child(first: vec3u, k: u32) -> vec3u { return first + vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u); }
+
+// The eight children of a parent.
 fn children_of(finer: texture_3d<f32>, first: vec3u) -> array<vec4f, 8> {
     var c: array<vec4f, 8>;
     for (var k = 0u; k < 8u; k++) {
-        c[k] = textureLoad(finer, first + vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u), 0);
+        c[k] = textureLoad(finer, child(first, k), 0);
     }
     return c;
 }
@@ -74,8 +77,8 @@ fn cs_main(@builtin(global_invocation_id) texel: vec3u) {
 }
 
 // How much of a surface's light a cone travelling along unit `e` sees, the surface sending it
-// out on the side of `n` (`n_e` = n·e): all of it from that side and edge-on, none from behind (through
-// the surface), between them a ramp. Isotropic voxels showed a cone from below the lit top
+// out on the side of `n` (`n_e` = n·e): all of it from that side and edge-on, none from
+// behind (through the surface), between them a ramp. Isotropic voxels showed a cone from below the lit top
 // of a block, and from in front of a dim face the lit faces behind it, at every coarse level
 // where one voxel holds both: the floor in front of a block's unlit face took 2.5 times the
 // light it sends there (a white cube beside a point light; cones of the base voxels alone
@@ -103,24 +106,24 @@ fn cs_base(@builtin(global_invocation_id) texel: vec3u) {
     let c = cell(texel);
     let first = 2u * c.id;
     let t = c.towards_low;
-    // Child k at first + (k & 1, (k >> 1) & 1, k >> 2); its normal's component along the way.
-    let v0 = textureLoad(finer_x, first, 0);
-    let v1 = textureLoad(finer_x, first + vec3u(1u, 0u, 0u), 0);
-    let v2 = textureLoad(finer_x, first + vec3u(0u, 1u, 0u), 0);
-    let v3 = textureLoad(finer_x, first + vec3u(1u, 1u, 0u), 0);
-    let v4 = textureLoad(finer_x, first + vec3u(0u, 0u, 1u), 0);
-    let v5 = textureLoad(finer_x, first + vec3u(1u, 0u, 1u), 0);
-    let v6 = textureLoad(finer_x, first + vec3u(0u, 1u, 1u), 0);
-    let v7 = textureLoad(finer_x, first + vec3u(1u, 1u, 1u), 0);
+    // Each child, and its normal's components along the way.
+    let v0 = textureLoad(finer_x, child(first, 0u), 0);
+    let v1 = textureLoad(finer_x, child(first, 1u), 0);
+    let v2 = textureLoad(finer_x, child(first, 2u), 0);
+    let v3 = textureLoad(finer_x, child(first, 3u), 0);
+    let v4 = textureLoad(finer_x, child(first, 4u), 0);
+    let v5 = textureLoad(finer_x, child(first, 5u), 0);
+    let v6 = textureLoad(finer_x, child(first, 6u), 0);
+    let v7 = textureLoad(finer_x, child(first, 7u), 0);
     let way = select(1.0, -1.0, t);
-    let n0 = way * textureLoad(normals, first, 0).xyz;
-    let n1 = way * textureLoad(normals, first + vec3u(1u, 0u, 0u), 0).xyz;
-    let n2 = way * textureLoad(normals, first + vec3u(0u, 1u, 0u), 0).xyz;
-    let n3 = way * textureLoad(normals, first + vec3u(1u, 1u, 0u), 0).xyz;
-    let n4 = way * textureLoad(normals, first + vec3u(0u, 0u, 1u), 0).xyz;
-    let n5 = way * textureLoad(normals, first + vec3u(1u, 0u, 1u), 0).xyz;
-    let n6 = way * textureLoad(normals, first + vec3u(0u, 1u, 1u), 0).xyz;
-    let n7 = way * textureLoad(normals, first + vec3u(1u, 1u, 1u), 0).xyz;
+    let n0 = way * textureLoad(normals, child(first, 0u), 0).xyz;
+    let n1 = way * textureLoad(normals, child(first, 1u), 0).xyz;
+    let n2 = way * textureLoad(normals, child(first, 2u), 0).xyz;
+    let n3 = way * textureLoad(normals, child(first, 3u), 0).xyz;
+    let n4 = way * textureLoad(normals, child(first, 4u), 0).xyz;
+    let n5 = way * textureLoad(normals, child(first, 5u), 0).xyz;
+    let n6 = way * textureLoad(normals, child(first, 6u), 0).xyz;
+    let n7 = way * textureLoad(normals, child(first, 7u), 0).xyz;
     // The four columns along each axis, in the order `parent` sums them.
     let x = column(v0, n0.x, v1, n1.x, t) + column(v2, n2.x, v3, n3.x, t) + column(v4, n4.x, v5, n5.x, t)
         + column(v6, n6.x, v7, n7.x, t);
