@@ -1,6 +1,8 @@
 //! Tiny synthetic sessions rendered on the test GPU (lavapipe in CI).
 #![allow(dead_code)]
 
+pub mod dvct;
+
 use glam::{Vec3, Vec4};
 use mrshade_core::{Differential, HdrImage};
 use mrshade_gpu::GpuContext;

@@ -1,0 +1,289 @@
+//! Known answers of what the `dvct` method's cones see (Franke §2.13.4): the probe's light
+//! they leave, the bounce light they gather, the probe's maps beside them, on the test GPU
+//! (against ray casting and the reference path tracer). Its volumes: tests/dvct.rs.
+
+mod common;
+
+use common::Setup;
+use common::dvct::{dvct, dvct_method, probe_visibility};
+use glam::Vec3;
+
+#[test]
+fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
+    let mut s = Setup::top_down(48);
+    s.probe = Some([0.8, 0.8, 0.8]);
+    s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
+    s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
+    dvct(&mut s, 32);
+    let r = s.render();
+    // Beside the cube (x ≈ −0.22 m, 0.12 m from its face) the cube hides part of the sky,
+    // farther (x ≈ −0.35 m) less of it.
+    let ratio = |x| r.l_rv(x, 24).x / r.l_r(x, 24).x;
+    let (beside, farther) = (ratio(14), ratio(8));
+    assert!(beside < 0.98 && beside < farther && farther < 1.0, "L_rv / L_r {beside} beside, {farther} farther");
+    // Far outside the volume (a corner of the image, 0.5 m away): identical solutions.
+    assert_eq!(r.l_rv(0, 0), r.l_r(0, 0));
+}
+
+#[test]
+fn a_lit_floor_does_not_light_itself() {
+    // In the real-only volume a lit floor is the only surface, and a plane reflects no light
+    // onto itself: the cones of its pixels inside the volume, kept off its voxels
+    // (cones.wgsl), gather nothing (wide cones at coarse levels gathered the floor's own
+    // light before, up to a fifth of its direct light).
+    use mrshade_render::outputs::AovImage;
+    let mut s = Setup::top_down(48);
+    s.plane(2.0, 0.0, 0.8, true).cube([0.0, 0.1, 0.0], 0.1, false);
+    s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
+    dvct(&mut s, 32);
+    let r = s.render();
+    let aovs = r.renderer.read_aovs(&r.ctx).unwrap();
+    let linear = |name: &str| match aovs.iter().find(|a| a.name == name).map(|a| &a.image) {
+        Some(AovImage::Linear(image)) => image.clone(),
+        _ => panic!("no {name} AOV"),
+    };
+    let (indirect_r, indirect_rv) = (linear("indirect_r"), linear("indirect_rv"));
+    // The volume: twice the cube's edge around it (x, z within ±0.2 m), a cell inside it.
+    let mut inside = 0;
+    for y in 0..48 {
+        for x in 0..48 {
+            let p = r.world_on_plane(x, y, 0.0);
+            if p.x.abs().max(p.z.abs()) > 0.18 {
+                continue;
+            }
+            let e = indirect_r.pixels[(y * 48 + x) as usize];
+            assert!(e.iter().all(|&c| c.abs() < 1e-6), "({x}, {y}): the floor lights itself: {e:?}");
+            inside += 1;
+        }
+    }
+    assert!(inside > 100, "{inside} floor pixels in the volume");
+    // The real+virtual solution does get the cube's bounce there.
+    assert!(indirect_rv.pixels.iter().any(|p| p[0] > 1e-4), "no bounce from the cube");
+}
+
+/// Cosine-weighted fraction of the hemisphere above the floor point `p` that the
+/// axis-aligned cube at `c` of half side `h` leaves open (a 64 × 64 stratified grid).
+fn sky_left_by_cube(p: Vec3, c: Vec3, h: f32) -> f32 {
+    let n = 64;
+    let mut open = 0;
+    for i in 0..n {
+        for j in 0..n {
+            let (u, v) = ((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
+            let (r, phi) = (u.sqrt(), std::f32::consts::TAU * v);
+            let d = Vec3::new(r * phi.cos(), (1.0 - u).sqrt(), r * phi.sin());
+            let (t0, t1) = ((c - Vec3::splat(h) - p) / d, (c + Vec3::splat(h) - p) / d);
+            let (near, far) = (t0.min(t1).max_element(), t0.max(t1).min_element());
+            open += (far < near.max(0.0)) as u32;
+        }
+    }
+    open as f32 / (n * n) as f32
+}
+
+#[test]
+fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
+    // Under a uniform probe, the share of a real floor's probe light that its cones let through
+    // beside a virtual cube (the probe_visibility AOVs) is the share of its sky that the cube
+    // leaves open. Wide cones whose samples' opacities compound hid the cube's share several
+    // times over (its side fills the same part of a cone sample after sample). Samples two and
+    // three times as far apart (`dvct.sample_spacing`; 1.5 is the second bounce's), each
+    // compounding its opacity over the length it stands for, must hide the same share.
+    for spacing in [0.5, 1.0, 1.5] {
+        let mut s = Setup::top_down(48);
+        s.probe = Some([0.8, 0.8, 0.8]);
+        let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
+        s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("sample_spacing = {spacing}\n");
+        let r = s.render();
+        let visibility = probe_visibility(&r);
+        let (mut error, mut count) = (0.0, 0);
+        for x in 0..48 {
+            let p = r.world_on_plane(x, 24, 0.0);
+            // Beside the cube, inside the volume (±0.2 m).
+            if p.x.abs() < half + 0.02 || p.x.abs() > 0.18 {
+                continue;
+            }
+            let i = (24 * 48 + x) as usize;
+            assert!(visibility.r[i][0] > 0.999, "the floor alone hides none of its own sky");
+            let rendered = visibility.rv[i][0];
+            let cast = sky_left_by_cube(p, centre, half);
+            eprintln!("spacing {spacing}, x {:.3}: rendered {rendered:.3}, ray cast {cast:.3}", p.x);
+            error += (rendered - cast).abs();
+            count += 1;
+        }
+        assert!(count >= 6, "{count} pixels beside the cube");
+        let mean = error / count as f32;
+        assert!(mean < 0.06, "spacing {spacing}: the probe visibility is {mean:.3} away from ray casting on average");
+    }
+}
+
+#[test]
+fn real_surfaces_beyond_the_volume_hide_the_probe_through_the_outer_volume() {
+    // A real box just outside the volume around a small virtual cube (twice its size), inside
+    // the outer one (four times that): the floor beside the virtual cube loses the sky that the
+    // real box hides, as ray casting says; with the thesis's single volume it lost none.
+    let visibility_beside = |outer_scale: f32| {
+        let mut s = Setup::top_down(48);
+        s.probe = Some([0.8, 0.8, 0.8]);
+        s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.05, 0.0], 0.05, false).cube([0.25, 0.1, 0.0], 0.1, true);
+        dvct(&mut s, 32);
+        // Every pixel traced: a block's light is not shared with the pixels beyond the inner
+        // volume, whose cones see the inner volume only. The cones alone shadow the probe
+        // (its lights' maps would take over where they cover the floor).
+        s.extra_toml += &format!("outer_scale = {outer_scale}\ntrace_block = 1\nprobe_lights = 0\n");
+        let r = s.render();
+        let visibility = probe_visibility(&r);
+        // The floor pixel nearest x = 0.08 m on the middle row: inside the inner volume (±0.1 m).
+        let x = (0..48).min_by_key(|&x| ((r.world_on_plane(x, 24, 0.0).x - 0.08).abs() * 1e4) as u32).unwrap();
+        let p = r.world_on_plane(x, 24, 0.0);
+        (visibility.r[(24 * 48 + x) as usize][0], sky_left_by_cube(p, Vec3::new(0.25, 0.1, 0.0), 0.1))
+    };
+    let (outer, cast) = visibility_beside(4.0);
+    eprintln!("beside the real box: {outer:.3} of the sky left, ray casting {cast:.3}");
+    assert!((outer - cast).abs() < 0.1, "the real box leaves {outer:.3} of the sky, ray casting {cast:.3}");
+    let (single, _) = visibility_beside(1.0);
+    assert!(single > 0.99, "with one volume the real box beyond it hides nothing: {single:.3}");
+}
+
+#[test]
+fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
+    // A cube on a floor under a lamp and the probe, traced per pixel and once per block: each
+    // pixel takes the blocks' light of its own surface only (nothing across the cube's edges)
+    // under its own material, so they agree closely everywhere. What differs follows the
+    // seams of the 32³ voxels, which single pixels show and blocks average (up to an eighth of
+    // the brightest indirect light with blocks 3.2 cm wide: 2 × 2 pixels of a 64² image, 4 × 4
+    // of a 128² one; cones that start one voxel off the surface see its seams more sharply
+    // than the two voxels they started at before, 0.114 → 0.127 at the 99th percentile). The
+    // cones turn by trace texel (cones.wgsl `cone_turn`), pixel by pixel when traced per pixel:
+    // that interleaving differs between the two by design (visibility mean 0.009 → 0.011, 99th
+    // percentile 0.047 → 0.051; light mean 0.026 → 0.029 at 4 × 4).
+    let render = |size: u32, block: u32| {
+        let mut s = Setup::top_down(size);
+        s.probe = Some([0.8, 0.8, 0.8]);
+        s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
+        s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("trace_block = {block}\n");
+        let r = s.render();
+        let method = dvct_method(&r);
+        let light = method.indirect.read_light(&r.ctx).unwrap().rv;
+        let visibility = probe_visibility(&r).rv;
+        (light, visibility)
+    };
+    for (size, block) in [(64, 2), (128, 4)] {
+        let (full_light, full_vis) = render(size, 1);
+        let light_scale = full_light.pixels.iter().map(|p| p[0]).fold(0.0, f32::max);
+        let (block_light, block_vis) = render(size, block);
+        let mut vis_errors: Vec<f32> = full_vis.iter().zip(&block_vis).map(|(a, b)| (a[0] - b[0]).abs()).collect();
+        let mut light_errors: Vec<f32> =
+            full_light.pixels.iter().zip(&block_light.pixels).map(|(a, b)| (a[0] - b[0]).abs() / light_scale).collect();
+        for errors in [&mut vis_errors, &mut light_errors] {
+            errors.sort_by(f32::total_cmp);
+        }
+        let stats = |e: &[f32]| (e.iter().sum::<f32>() / e.len() as f32, e[e.len() * 99 / 100], e[e.len() - 1]);
+        let (vis, light) = (stats(&vis_errors), stats(&light_errors));
+        eprintln!(
+            "{block} × {block}: probe visibility: mean, 99th percentile, max |Δ| {vis:.3?}; indirect light {light:.3?}"
+        );
+        assert!(vis.0 < 0.015 && vis.1 < 0.06, "{block} × {block}: probe visibility: {vis:?}");
+        assert!(
+            light.0 < 0.035 && light.1 < 0.14,
+            "{block} × {block}: indirect light (share of its largest value): {light:?}"
+        );
+    }
+}
+
+#[test]
+fn a_sun_in_the_probe_casts_the_real_scenes_sharp_shadow_through_the_maps() {
+    // A dim sky with a small bright sun 45° up toward −z, a real cube on a real floor, a virtual
+    // cube beside it (the volume and the maps lie around it): the floor in the real cube's sun
+    // shadow keeps only the sky's share of the probe, the floor beyond it nearly all. The
+    // nine 60° cones alone (`probe_lights = 0`) blur the sun's shadow away.
+    let floor_visibility = |probe_lights: u32| {
+        let mut s = Setup::sun_over_floor();
+        s.cube([0.0, 0.05, -0.1], 0.05, true).cube([0.1, 0.04, 0.05], 0.04, false);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("probe_lights = {probe_lights}\ntrace_block = 1\n");
+        let r = s.render();
+        let visibility = probe_visibility(&r);
+        let at = |target: Vec3| visibility.r[r.floor_pixel(target)][0];
+        // The shadow reaches from z = −0.05 to +0.05 (the cube is 0.1 high).
+        (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.1)))
+    };
+    let (shadow, lit) = floor_visibility(32);
+    eprintln!("maps: in the sun shadow {shadow:.3}, beyond it {lit:.3}");
+    assert!(shadow < 0.15 && lit > 0.8, "in the shadow {shadow:.3}, beyond it {lit:.3}");
+    let (cones_shadow, _) = floor_visibility(0);
+    eprintln!("cones alone: in the sun shadow {cones_shadow:.3}");
+    assert!(cones_shadow > shadow + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
+}
+
+#[test]
+fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_through_the_maps() {
+    // The same sun over a real floor, the cube now virtual: the floor in its sun shadow keeps
+    // only the sky's share of the probe in L_rv (the answer's sharp shadow; the nine cones alone
+    // leave a faint one), the floor beyond it nearly all.
+    let floor_visibility = |probe_lights: u32| {
+        let mut s = Setup::sun_over_floor();
+        s.cube([0.0, 0.05, -0.1], 0.05, false);
+        dvct(&mut s, 32);
+        s.extra_toml += &format!("extent = 4.0\nprobe_lights = {probe_lights}\ntrace_block = 1\n");
+        let r = s.render();
+        let visibility = probe_visibility(&r);
+        let at = |target: Vec3| {
+            let i = r.floor_pixel(target);
+            (visibility.rv[i][0], visibility.r[i][0])
+        };
+        (at(Vec3::new(0.03, 0.0, 0.0)), at(Vec3::new(0.03, 0.0, 0.09)))
+    };
+    let ((shadow_rv, shadow_r), (lit_rv, _)) = floor_visibility(32);
+    eprintln!("maps: in the sun shadow {shadow_rv:.3} (real-only {shadow_r:.3}), beyond it {lit_rv:.3}");
+    assert!(shadow_r > 0.8, "nothing real shadows the floor: {shadow_r:.3}");
+    assert!(shadow_rv < 0.2 && lit_rv > 0.8, "in the shadow {shadow_rv:.3}, beyond it {lit_rv:.3}");
+    let ((cones_shadow, _), _) = floor_visibility(0);
+    eprintln!("cones alone: in the sun shadow {cones_shadow:.3}");
+    assert!(cones_shadow > shadow_rv + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
+}
+
+#[test]
+fn a_small_balls_bounce_onto_the_floor_around_it_matches_the_path_tracer() {
+    // A white virtual ball (5 cm) on a real grey floor, lit by a real lamp to its −x side, no
+    // probe, no photo: the light it reflects onto the floor around it on the lamp's side and
+    // beside it, 3–15 cm from its surface, against the reference path tracer. A cone passing
+    // the ball meets it sample after sample in the same part of the cone; compositing those
+    // samples as independent layers counted its light 1.5 times here (2–3 times farther out,
+    // 7–15 cm from it: cones.wgsl `cone_seen`).
+    let mut s = Setup::top_down(64);
+    // 35 cm above the floor: 7 mm pixels.
+    s.gltf.patch_node(0, |n| n["translation"] = serde_json::json!([0.0, 0.35, 0.0]));
+    s.plane(2.0, 0.0, 0.5, true);
+    let white = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
+    let ball = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.05, 24), Some(white), true);
+    s.gltf.node(
+        serde_json::json!({"name": "ball", "mesh": ball, "translation": [0.0, 0.05, 0.0], "extras": {"real": false}}),
+    );
+    s.light(serde_json::json!({"type": "point", "intensity": 0.25}), [-0.15, 0.35, 0.0], true);
+    dvct(&mut s, 128);
+    s.extra_toml += "photo_voxels = false\n[reference]\nspp = 128\n";
+    let r = s.render();
+    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
+    let reference = mrshade_reference::render_with(&r.session, None, &caustics, &|_, _| {});
+    let (mut ours, mut theirs) = (0.0, 0.0);
+    for y in 0..64 {
+        for x in 0..64 {
+            let p = r.world_on_plane(x, y, 0.0);
+            let d = (p.x * p.x + p.z * p.z).sqrt();
+            // Around the ball out of its shadow (the lamp is at −x).
+            if !(0.08..0.2).contains(&d) || p.x > 0.0 {
+                continue;
+            }
+            ours += r.l_rv(x, y).x - r.l_r(x, y).x;
+            theirs += reference.l_rv.get(x, y)[0] - reference.l_r.get(x, y)[0];
+        }
+    }
+    eprintln!("the ball's light on the floor around it: ours {ours:.4}, the path tracer's {theirs:.4}");
+    assert!(theirs > 0.0, "the reference sees the ball's light: {theirs}");
+    let ratio = ours / theirs;
+    // Independent layers: 1.49 here; the mean of the two bounds 1.23.
+    assert!((0.7..1.35).contains(&ratio), "the ball sends {ratio:.2} times the path tracer's light onto the floor");
+}
