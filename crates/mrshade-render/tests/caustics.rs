@@ -14,68 +14,82 @@ const BALL_LIGHT: Vec3 = Vec3::new(0.4, 0.7, 0.0);
 const BALL_CENTRE: Vec3 = Vec3::new(0.0, 0.25, 0.0);
 
 /// The glass-ball caustic scene: a 10 cm glass ball 25 cm above a real floor (albedo 0.5), a
-/// point light up and to the side, seen from straight above; `blocker` adds a virtual opaque
-/// cube in the refracted light's way. Returns the render and what caustics add to the
-/// composite's green channel per pixel (on minus off).
-fn ball_caustic(light_real: bool, ball_real: bool, blocker: bool) -> (common::Rendered, Vec<f32>) {
-    ball_caustic_with(light_real, ball_real, blocker, None)
-}
-
-/// `ball_caustic`, with a virtual mirror (`MIRROR_HALF` half size, centre, rotation about z)
-/// if given.
-fn ball_caustic_with(
-    light_real: bool,
-    ball_real: bool,
-    blocker: bool,
-    mirror_at: Option<(Vec3, f32)>,
-) -> (common::Rendered, Vec<f32>) {
-    ball_caustic_at(BALL, 64, light_real, ball_real, blocker, mirror_at)
-}
-
-/// `ball_caustic_with` at `size`² pixels with photon maps of `photons`² texels.
-fn ball_caustic_at(
+/// point light up and to the side, seen from straight above at `size`² pixels, with photon
+/// maps of `photons`² texels.
+struct Ball {
     size: u32,
     photons: u32,
     light_real: bool,
     ball_real: bool,
+    /// A virtual opaque cube in the refracted light's way.
     blocker: bool,
+    /// A virtual mirror (`MIRROR_HALF` half size): centre, rotation about z.
     mirror_at: Option<(Vec3, f32)>,
-) -> (common::Rendered, Vec<f32>) {
-    let render = |caustics: bool| {
-        let mut s = Setup::top_down(size);
-        // Additive: the uniform gray photo does not show the real lamp's light or caustic,
-        // and α (photo over the real light, caustic included) would make every removal of
-        // the real caustic the photo's whole value.
-        s.extra_toml += &format!(
-            "[caustics]\nenabled = {caustics}\nphoton_resolution = {photons}\n[composite]\nmode = \"additive\"\n"
-        );
-        s.plane(2.0, 0.0, 0.5, true).light(
-            json!({"type": "point", "intensity": 2.0}),
-            BALL_LIGHT.to_array(),
-            light_real,
-        );
-        if blocker {
-            s.cube([-0.13, 0.1, 0.0], 0.03, false);
-        }
-        if let Some((centre, angle)) = mirror_at {
-            let m = s.gltf.material(mirror());
-            let mesh = s.gltf.mesh(&quad(MIRROR_HALF), Some(m), true);
-            s.gltf.node(json!({"name": "mirror", "mesh": mesh, "translation": centre.to_array(),
-                "rotation": quat([0.0, 0.0, 1.0], angle), "extras": {"real": false}}));
-        }
-        let g = s.gltf.material(glass());
-        let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.1, 24), Some(g), true);
-        s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": BALL_CENTRE.to_array(),
-            "extras": {"real": ball_real}}));
-        let r = s.render();
-        let image = r.renderer.read_composite(&r.ctx).unwrap().image;
-        (r, image)
-    };
-    let (r, with) = render(true);
-    let (_, without) = render(false);
-    let added =
-        (0..size * size).map(|i| with.get(i % size, i / size)[1] - without.get(i % size, i / size)[1]).collect();
-    (r, added)
+    /// A virtual plate (`COVER`) between the camera and the caustic.
+    cover: bool,
+}
+
+/// The plate that hides the caustic from the camera above: centre, half extents. Its shadow
+/// of the lamp and its view from the mirror lie far from the caustic.
+const COVER: (Vec3, [f32; 3]) = (Vec3::new(-0.12, 0.5, 0.0), [0.05, 0.01, 0.08]);
+
+impl Ball {
+    fn new(light_real: bool, ball_real: bool) -> Self {
+        Self { size: BALL, photons: 64, light_real, ball_real, blocker: false, mirror_at: None, cover: false }
+    }
+
+    /// The render, and what caustics add to the composite's green channel per pixel (on
+    /// minus off).
+    fn caustic(&self) -> (common::Rendered, Vec<f32>) {
+        let size = self.size;
+        let render = |caustics: bool| {
+            let mut s = Setup::top_down(size);
+            // Additive: the uniform gray photo does not show the real lamp's light or
+            // caustic, and α (photo over the real light, caustic included) would make every
+            // removal of the real caustic the photo's whole value.
+            s.extra_toml += &format!(
+                "[caustics]\nenabled = {caustics}\nphoton_resolution = {}\n[composite]\nmode = \"additive\"\n",
+                self.photons
+            );
+            s.plane(2.0, 0.0, 0.5, true).light(
+                json!({"type": "point", "intensity": 2.0}),
+                BALL_LIGHT.to_array(),
+                self.light_real,
+            );
+            if self.blocker {
+                s.cube([-0.13, 0.1, 0.0], 0.03, false);
+            }
+            if self.cover {
+                let m = s.gltf.material(mrshade_testkit::gltf::lambert("cover", [0.7; 3]));
+                let mesh = s.gltf.mesh(&mrshade_testkit::gltf::cuboid(COVER.1), Some(m), true);
+                s.gltf.node(json!({"name": "cover", "mesh": mesh, "translation": COVER.0.to_array(),
+                    "extras": {"real": false}}));
+            }
+            if let Some((centre, angle)) = self.mirror_at {
+                let m = s.gltf.material(mirror());
+                let mesh = s.gltf.mesh(&quad(MIRROR_HALF), Some(m), true);
+                s.gltf.node(json!({"name": "mirror", "mesh": mesh, "translation": centre.to_array(),
+                    "rotation": quat([0.0, 0.0, 1.0], angle), "extras": {"real": false}}));
+            }
+            let g = s.gltf.material(glass());
+            let mesh = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.1, 24), Some(g), true);
+            s.gltf.node(json!({"name": "ball", "mesh": mesh, "translation": BALL_CENTRE.to_array(),
+                "extras": {"real": self.ball_real}}));
+            let r = s.render();
+            let image = r.renderer.read_composite(&r.ctx).unwrap().image;
+            (r, image)
+        };
+        let (r, with) = render(true);
+        let (_, without) = render(false);
+        let added =
+            (0..size * size).map(|i| with.get(i % size, i / size)[1] - without.get(i % size, i / size)[1]).collect();
+        (r, added)
+    }
+}
+
+/// `Ball::caustic` of the plain scene (no mirror, no cover).
+fn ball_caustic(light_real: bool, ball_real: bool, blocker: bool) -> (common::Rendered, Vec<f32>) {
+    Ball { blocker, ..Ball::new(light_real, ball_real) }.caustic()
 }
 
 /// Where the ray from the light through the ball's centre (not bent) meets the floor.
@@ -141,22 +155,21 @@ fn a_real_caustic_that_a_virtual_object_blocks_leaves_the_image() {
 
 const MIRROR_HALF: f32 = 0.08;
 
-#[test]
-fn a_caustic_is_seen_in_a_virtual_mirror() {
-    // Spec §2.17.4 (Eq. T5.2/T5.3): the caustic is applied on reflected surfaces too. A
-    // virtual mirror to the right of the ball, turned so that the camera above sees the
-    // ball's caustic on the floor in it: its pixels that look at the caustic brighten with
-    // caustics on, by about what the floor there gains (the mirror reflects ~all of it).
+/// The mirror pixels of the ball scene with a virtual mirror to the right of the ball, turned
+/// so that the camera above sees the ball's caustic on the floor in it (with `cover`, the
+/// plate hides that floor from the camera): per pixel well inside the mirror, where its
+/// reflected ray meets the floor and what caustics add there; and the floor's brightest
+/// addition.
+fn caustic_in_mirror(cover: bool) -> (Vec<(Vec3, f32)>, f32) {
     let centre = Vec3::new(0.2, 0.15, 0.0);
-    let chief = ball_chief_point();
     let incident = (centre - Vec3::Y).normalize();
-    let normal = ((chief - centre).normalize() - incident).normalize();
+    let normal = ((ball_chief_point() - centre).normalize() - incident).normalize();
     // quad() faces +y; a turn by θ about z takes +y to (−sin θ, cos θ, 0).
     let angle = (-normal.x).atan2(normal.y);
-    let (r, added) = ball_caustic_with(true, false, false, Some((centre, angle)));
+    let (r, added) = Ball { mirror_at: Some((centre, angle)), cover, ..Ball::new(true, false) }.caustic();
     let (tangent, eye) = (Vec3::new(normal.y, -normal.x, 0.0), Vec3::Y);
-    let (mut best, mut best_at, mut mirror_pixels) = (0.0f32, Vec3::ZERO, 0);
     let floor_peak = added.iter().fold(0.0f32, |m, &a| m.max(a));
+    let mut pixels = Vec::new();
     for (i, &a) in added.iter().enumerate() {
         let (x, y) = (i as u32 % BALL, i as u32 / BALL);
         let d = (r.world_on_plane(x, y, 0.0) - eye).normalize();
@@ -165,16 +178,57 @@ fn a_caustic_is_seen_in_a_virtual_mirror() {
         if local.dot(tangent).abs() > 0.8 * MIRROR_HALF || local.z.abs() > 0.8 * MIRROR_HALF {
             continue; // not well inside the mirror
         }
-        mirror_pixels += 1;
-        if a > best {
-            let reflected = d - 2.0 * d.dot(normal) * normal;
-            best = a;
-            best_at = p + reflected * (-p.y / reflected.y);
+        let reflected = d - 2.0 * d.dot(normal) * normal;
+        pixels.push((p + reflected * (-p.y / reflected.y), a));
+    }
+    (pixels, floor_peak)
+}
+
+#[test]
+fn a_caustic_is_seen_in_a_virtual_mirror() {
+    // Spec §2.17.4 (Eq. T5.2/T5.3): the caustic is applied on reflected surfaces too: the
+    // mirror's pixels that look at the caustic brighten with caustics on, by about what the
+    // floor there gains (the mirror reflects ~all of it).
+    let (pixels, floor_peak) = caustic_in_mirror(false);
+    let (best_at, best) = pixels.iter().fold((Vec3::ZERO, 0.0f32), |b, &(at, a)| if a > b.1 { (at, a) } else { b });
+    assert!(pixels.len() >= 12, "the mirror covers {} pixels", pixels.len());
+    assert!(best > 0.3 * floor_peak, "the mirror shows the caustic (brightest addition {best}, floor's {floor_peak})");
+    let chief = ball_chief_point();
+    assert!((best_at - chief).length() < 0.1, "the mirror's brightest addition looks at {best_at}, not near {chief}");
+}
+
+#[test]
+fn a_caustic_the_camera_does_not_see_is_seen_in_a_virtual_mirror() {
+    // The same mirror, with a plate between the camera and the caustic: the floor the mirror
+    // shows has no pixel of the screen's caustic buffer, and takes its caustic from the
+    // photons' world-space grid. The mirror pixels that look under the plate brighten as
+    // much as they do when the camera sees that floor.
+    let (seen, _) = caustic_in_mirror(false);
+    let (hidden, _) = caustic_in_mirror(true);
+    // Floor points the plate hides from the camera above, with a margin: under the plate's
+    // footprint as seen from the camera (its near face at y = 0.49).
+    let (c, h) = COVER;
+    let scale = 1.0 / (1.0 - (c.y - h[1]));
+    let under =
+        |p: Vec3| (p.x - c.x * scale).abs() < 0.8 * h[0] * scale && (p.z - c.z * scale).abs() < 0.8 * h[2] * scale;
+    let (mut with_cover, mut without, mut count) = (0.0f32, 0.0f32, 0);
+    for (&(at, a), &(_, b)) in hidden.iter().zip(&seen) {
+        if under(at) {
+            with_cover += a;
+            without += b;
+            count += 1;
         }
     }
-    assert!(mirror_pixels >= 12, "the mirror covers {mirror_pixels} pixels");
-    assert!(best > 0.3 * floor_peak, "the mirror shows the caustic (brightest addition {best}, floor's {floor_peak})");
-    assert!((best_at - chief).length() < 0.1, "the mirror's brightest addition looks at {best_at}, not near {chief}");
+    assert!(count >= 4, "{count} mirror pixels look under the plate");
+    assert!(
+        without > 0.05 * count as f32,
+        "the caustic reaches the floor under the plate ({without} over {count} pixels)"
+    );
+    let ratio = with_cover / without;
+    assert!(
+        (0.75..1.33).contains(&ratio),
+        "the hidden caustic in the mirror is {ratio} times the seen one ({with_cover} vs {without} over {count} pixels)"
+    );
 }
 
 /// Where a vertical ray down at horizontal offset `r` from the axis of a glass sphere (radius
@@ -302,7 +356,7 @@ fn the_caustic_matches_the_reference_in_place_shape_and_energy() {
     // At the default photon map (128²) and a frame large enough for the caustic buffer's
     // coarse level (1/16 of the frame per axis) to have texels to spare.
     const SIZE: u32 = 128;
-    let (r, ours) = ball_caustic_at(SIZE, 128, true, false, false, None);
+    let (r, ours) = Ball { size: SIZE, photons: 128, ..Ball::new(true, false) }.caustic();
     let reference = |photons: Option<u64>| {
         let caustics = mrshade_reference::CausticSettings { photons_per_light: photons };
         mrshade_reference::render_with(&r.session, None, &caustics, &|_, _| {}).composite

@@ -287,7 +287,8 @@ fn interiors_match() {
 #[test]
 fn caustic_structs_match() {
     use mrshade_render::specular::caustics::{
-        COARSE_LEVEL_FACTOR, CausticParams, PHOTON_BYTES, PHOTONS_SHADER, SPLAT_SHADER,
+        COARSE_LEVEL_FACTOR, CausticParams, GRID_HEADER_WORDS, GRID_PHOTON_BYTES, PHOTON_BYTES, PHOTONS_SHADER,
+        SPLAT_SHADER,
     };
     assert_layout(
         PHOTONS_SHADER,
@@ -300,6 +301,8 @@ fn caustic_structs_match() {
         ],
     );
     assert_eq!(wgsl_layout(PHOTONS_SHADER, "Photon").0 as u64, PHOTON_BYTES);
+    assert_eq!(wgsl_layout(PHOTONS_SHADER, "GridPhoton").0 as u64, GRID_PHOTON_BYTES);
+    assert!(PHOTONS_SHADER.contains(&format!("const GRID_HEADER: u32 = {GRID_HEADER_WORDS}u;")));
     assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
 }
 

@@ -354,6 +354,7 @@ impl SpecularStage {
         resolve_entries.extend((5..=18).map(|b| bind::texture(b, cs, unfilterable, d2)));
         resolve_entries.push(bind::uniform(19, cs));
         resolve_entries.extend((20..=21).map(|b| bind::texture(b, cs, unfilterable, d2)));
+        resolve_entries.extend((22..=23).map(|b| bind::storage(b, cs)));
         let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
         let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(20));
         // The probe (bindings 0–3) and the material textures hit surfaces are shaded with.
@@ -405,6 +406,16 @@ impl SpecularStage {
         resolve_textures.push(ism_params.as_entire_binding());
         resolve_textures
             .extend([TextureView(&caustic_buffer.levels[1].rv.view), TextureView(&caustic_buffer.levels[1].r.view)]);
+        // The photons' world-space grid, or an empty one.
+        let no_grid;
+        let grid = match &caustics {
+            Some(c) => &c.grid,
+            None => {
+                no_grid = caustics::PhotonGrid::new(device, 0, &inputs.settings.caustics);
+                &no_grid
+            }
+        };
+        resolve_textures.extend([grid.heads.as_entire_binding(), grid.photons.as_entire_binding()]);
         let mut resolve_buffers: Vec<wgpu::BindingResource> =
             scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
         resolve_buffers.extend([
@@ -505,6 +516,9 @@ impl SpecularStage {
     /// method's shading.
     pub fn record_rays(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         self.impostors.record(rec, rasterizer);
+        if let Some(caustics) = &self.caustics {
+            caustics.grid.clear(&mut rec.encoder);
+        }
         if std::mem::take(&mut self.camera_views_stale) {
             rasterizer.record(rec, "specular/camera_views", &self.camera_views);
         }
@@ -582,5 +596,6 @@ pub const RESOLVE_SHADER: &str = wgsl!(
     "../../shaders/lib/vpl_light.wgsl",
     "tracing.wgsl",
     "caustics/levels.wgsl",
+    "../../shaders/lib/photon_grid.wgsl",
     "resolve.wgsl",
 );

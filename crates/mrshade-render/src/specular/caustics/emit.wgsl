@@ -23,6 +23,10 @@
 // The landed photons of each caustic level (level × photon_slots() + i), and their draws.
 @group(2) @binding(1) var<storage, read_write> splat_list: array<u32>;
 @group(2) @binding(2) var<storage, read_write> splat_draws: array<SplatDraw, 2>;
+// The world-space grid of the landed photons (shaders/lib/photon_grid.wgsl): header and list
+// heads, and the photons it lists.
+@group(2) @binding(3) var<storage, read_write> grid: array<atomic<u32>>;
+@group(2) @binding(4) var<storage, read_write> grid_photons: array<GridPhoton>;
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -197,6 +201,43 @@ fn nearer(a: f32, b: f32) -> f32 {
     return min(a, b);
 }
 
+// What a workgroup's photons add to the grid's header: the levels they use (bits), and the
+// box their quads span (order keys: the lower corner's complemented, so that both corners
+// grow by atomicMax from the cleared 0).
+var<workgroup> group_levels: atomic<u32>;
+var<workgroup> group_box: array<atomic<u32>, 6>;
+
+// Lists the landed photon `index` (its half-size sized) in the world-space grid, at the same
+// index, as a photon of L_r (`of_r` 1) or of L_rv (0).
+fn grid_insert(index: u32, of_r: f32) {
+    let photon = photons[index];
+    let splat_min = caustics.splat.x;
+    let p = photon.position.xyz;
+    let h = photon.normal.w;
+    let level = grid_level(h, splat_min);
+    atomicOr(&group_levels, 1u << level);
+    let reach = vec3f(GRID_CELL_FACTOR * 0.5 * h);
+    for (var axis = 0u; axis < 3u; axis++) {
+        atomicMax(&group_box[axis], ~order_key(p[axis] - reach[axis]));
+        atomicMax(&group_box[3u + axis], order_key(p[axis] + reach[axis]));
+    }
+    let head = grid_head(level, grid_cell(p, level, splat_min), arrayLength(&grid));
+    let next = atomicExchange(&grid[head], index + 1u);
+    grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, of_r), vec4f(photon.power.rgb, bitcast<f32>(next)));
+}
+
+// Adds the workgroup's levels and box to the grid's header, once per workgroup (local
+// invocation `local`).
+fn grid_header_update(local: u32) {
+    let levels = atomicLoad(&group_levels);
+    if (levels == 0u) { return; }
+    if (local == 0u) { atomicOr(&grid[GRID_LEVELS_WORD], levels); }
+    if (local < 6u) {
+        let word = select(GRID_BOX_MAX_WORD + local - 3u, GRID_BOX_MIN_WORD + local, local < 3u);
+        atomicMax(&grid[word], atomicLoad(&group_box[local]));
+    }
+}
+
 // Each landed photon's quad half-size (spec §2.17.2, "computed from the world-position of the
 // adjacent photons, similar as in the work of Wyman"), into normal.w, clamped to [splat_min,
 // splat_far_max]: the photon spacing along each axis of the map is the nearer neighbour's
@@ -210,6 +251,8 @@ var<workgroup> group_base: array<u32, 2>;
 @compute @workgroup_size(8, 8)
 fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
     if (local < 2u) { atomicStore(&group_count[local], 0u); }
+    if (local < 6u) { atomicStore(&group_box[local], 0u); }
+    if (local == 0u) { atomicStore(&group_levels, 0u); }
     workgroupBarrier();
     let res = caustics.info.x;
     let inside = all(id.xy < vec2u(res)) && id.z < caustics.info.y;
@@ -231,8 +274,12 @@ fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
         let level = select(0u, 1u, size > caustics.splat.y);
         listed[kind] = vec3u(index, level, atomicAdd(&group_count[level], 1u));
         landed[kind] = true;
+        // The probe's photons stay off the grid: surfaces off screen take the probe
+        // unshadowed (resolve.wgsl, shade_hit), which holds the sky a glass lets through.
+        if (caustics.info.z == 0u) { grid_insert(index, select(0.0, 1.0, kind >= 2u)); }
     }
     workgroupBarrier();
+    grid_header_update(local);
     if (local < 2u) {
         let count = atomicLoad(&group_count[local]);
         group_base[local] = atomicAdd(&splat_draws[local].vertex_count, 6u * count) / 6u;

@@ -1,7 +1,9 @@
 //! Caustics of the punctual lights and of the probe's sky through the traced objects
 //! (reflections spec §2.17): photon G-buffers (`emit.wgsl`), splatted as surface-aligned quads into a screen-space
 //! caustic buffer of irradiance per differential half (`splat.wgsl`), applied to the diffuse
-//! surfaces the camera sees by the specular stage's resolve.
+//! surfaces the camera sees by the specular stage's resolve; the punctual lights' photons
+//! also listed in a world-space grid (`grid.rs`) for the surfaces that reflected and
+//! refracted rays reach but the camera does not see.
 
 use crate::scene_gpu::{Geometry, GpuProbe, GpuScene};
 use bytemuck::{Pod, Zeroable};
@@ -12,6 +14,9 @@ use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
+
+mod grid;
+pub use grid::{GRID_HEADER_WORDS, GRID_PHOTON_BYTES, PhotonGrid};
 
 /// Mirrors `CausticParams` in photons.wgsl.
 #[repr(C)]
@@ -154,6 +159,8 @@ pub struct Caustics {
     /// splat lists.
     size: Vec<Dispatch>,
     splat: wgpu::RenderPipeline,
+    /// The landed photons in world space, for the surfaces the camera does not see.
+    pub grid: PhotonGrid,
 }
 
 impl Caustics {
@@ -193,7 +200,7 @@ impl Caustics {
         let emit_output = bind::layout(
             device,
             "specular/photons_output",
-            &[bind::storage_rw(0, cs), bind::storage_rw(1, cs), bind::storage_rw(2, cs)],
+            &(0..5).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
         );
         let emit_probe = bind::layout(device, "specular/photons_probe", &GpuProbe::layout_entries(cs));
         let [impostors, owners, impostor_texels] = inputs.impostors;
@@ -261,6 +268,10 @@ impl Caustics {
 
         let scene_group =
             bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
+        let slots =
+            |sources: u32, resolution: u32| sources as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64;
+        // The punctual lights' photons (emit.wgsl leaves the probe's off the grid).
+        let grid = PhotonGrid::new(device, slots(lights, settings.photon_resolution), &settings);
         let (mut groups, mut emit_dispatches, mut size_dispatches) = (Vec::new(), Vec::new(), Vec::new());
         for (label, sources, resolution, from_probe) in [
             (LIGHTS_LABEL, lights, settings.photon_resolution, 0),
@@ -274,7 +285,7 @@ impl Caustics {
                 contents: bytemuck::bytes_of(&CausticParams::zeroed()),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
-            let slots = sources as u64 * PHOTON_KINDS * resolution as u64 * resolution as u64;
+            let slots = slots(sources, resolution);
             // The lights' photons live in `LightPhotons` (dir reads them too).
             let shared = inputs.light_photons.filter(|_| from_probe == 0);
             let (photons, list) = match shared {
@@ -303,7 +314,7 @@ impl Caustics {
                     device,
                     &format!("{label}/output"),
                     &emit_output,
-                    &[&photons, &list, &draws].map(|b| b.as_entire_binding()),
+                    &[&photons, &list, &draws, &grid.heads, &grid.photons].map(|b| b.as_entire_binding()),
                 ),
                 probe_group.clone(),
             ];
@@ -341,7 +352,7 @@ impl Caustics {
                 splat_groups,
             });
         }
-        Some(Self { settings, casters, groups, emit: emit_dispatches, size: size_dispatches, splat })
+        Some(Self { settings, casters, groups, emit: emit_dispatches, size: size_dispatches, splat, grid })
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their
@@ -517,6 +528,7 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "../../../shaders/lib/env.wgsl",
     "../tracing.wgsl",
     "../../../shaders/lib/photon.wgsl",
+    "../../../shaders/lib/photon_grid.wgsl",
     "photons.wgsl",
     "emit.wgsl",
 );

@@ -1,0 +1,57 @@
+//! The landed photons in a hashed world-space grid (`shaders/lib/photon_grid.wgsl`): the
+//! caustics of surfaces that reflected and refracted rays reach but the camera does not see,
+//! where the screen-space caustic buffer has no texel (reflections spec §2.17.4).
+
+use mrshade_core::settings::CausticsSettings;
+use wgpu::util::DeviceExt;
+
+/// Words of the grid buffer before the list heads (`GRID_HEADER` in photon_grid.wgsl).
+pub const GRID_HEADER_WORDS: u64 = 12;
+/// Bytes of one listed photon (`GridPhoton` in photon_grid.wgsl).
+pub const GRID_PHOTON_BYTES: u64 = 48;
+/// List heads of the grid: 2^18 (1 MiB), some ten times the landed photons of a light at the
+/// default photon resolution, so that few cells share a head.
+pub const GRID_HEADS: u64 = 1 << 18;
+
+/// The grid's buffers.
+pub struct PhotonGrid {
+    /// Header (levels used as bits, splat_min, depth epsilon, the photons' box) and list
+    /// heads.
+    pub heads: wgpu::Buffer,
+    /// The listed photons, at their indices in the punctual lights' photon G-buffer.
+    pub photons: wgpu::Buffer,
+}
+
+impl PhotonGrid {
+    /// A grid for the `capacity` photon slots of the punctual lights, their quads sized by
+    /// `settings`; with 0, an empty one that no lookup reads past its header (the resolve's
+    /// binding when no photons are traced).
+    pub fn new(device: &wgpu::Device, capacity: u64, settings: &CausticsSettings) -> Self {
+        let heads = if capacity == 0 { 1 } else { GRID_HEADS };
+        let mut words = vec![0u32; (GRID_HEADER_WORDS + heads) as usize];
+        words[1] = settings.splat_min.to_bits();
+        words[2] = settings.depth_epsilon.to_bits();
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        Self {
+            heads: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("specular/photon_grid/heads"),
+                contents: bytemuck::cast_slice(&words),
+                usage,
+            }),
+            photons: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("specular/photon_grid/photons"),
+                size: capacity.max(1) * GRID_PHOTON_BYTES,
+                usage,
+                mapped_at_creation: false,
+            }),
+        }
+    }
+
+    /// Empties the grid for this frame's photons (before the photon pass's `cs_size`): its
+    /// levels, box and list heads; splat_min and the depth epsilon (header words 1 and 2)
+    /// stay.
+    pub fn clear(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.clear_buffer(&self.heads, 0, Some(4));
+        encoder.clear_buffer(&self.heads, 16, None);
+    }
+}
