@@ -287,8 +287,8 @@ fn interiors_match() {
 #[test]
 fn caustic_structs_match() {
     use mrshade_render::specular::caustics::{
-        COARSE_LEVEL_FACTOR, CausticParams, GRID_HEADER_WORDS, GRID_PHOTON_BYTES, PHOTON_BYTES, PHOTONS_SHADER,
-        SPLAT_SHADER,
+        COARSE_LEVEL_FACTOR, CausticParams, GRID_BOX_MIN_WORD, GRID_EPSILON_WORD, GRID_HEADER_WORDS, GRID_PHOTON_BYTES,
+        GRID_SPLAT_MIN_WORD, PHOTON_BYTES, PHOTONS_SHADER, SPLAT_SHADER,
     };
     assert_layout(
         PHOTONS_SHADER,
@@ -302,7 +302,14 @@ fn caustic_structs_match() {
     );
     assert_eq!(wgsl_layout(PHOTONS_SHADER, "Photon").0 as u64, PHOTON_BYTES);
     assert_eq!(wgsl_layout(PHOTONS_SHADER, "GridPhoton").0 as u64, GRID_PHOTON_BYTES);
-    assert!(PHOTONS_SHADER.contains(&format!("const GRID_HEADER: u32 = {GRID_HEADER_WORDS}u;")));
+    for (name, word) in [
+        ("GRID_HEADER", GRID_HEADER_WORDS),
+        ("GRID_SPLAT_MIN_WORD", GRID_SPLAT_MIN_WORD),
+        ("GRID_EPSILON_WORD", GRID_EPSILON_WORD),
+        ("GRID_BOX_MIN_WORD", GRID_BOX_MIN_WORD),
+    ] {
+        assert!(PHOTONS_SHADER.contains(&format!("const {name}: u32 = {word}u;")), "{name} = {word}");
+    }
     assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
 }
 

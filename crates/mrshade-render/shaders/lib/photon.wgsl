@@ -11,3 +11,11 @@ struct Photon {
 
 // Per light and texel: the reflected and the refracted photon of L_rv, then those of L_r.
 const PHOTON_KINDS: u32 = 4u;
+
+// The irradiance that a photon of `power` spread over its quad of half-size `half_size` gives
+// the point at `local` (in half-sizes from its centre, inside the quad): a tent that
+// integrates to one over the quad (the splat's and the world-space grid's kernel alike).
+fn quad_irradiance(power: vec3f, local: vec2f, half_size: f32) -> vec3f {
+    let tent = (1.0 - abs(local.x)) * (1.0 - abs(local.y));
+    return power * tent / (half_size * half_size);
+}

@@ -78,6 +78,5 @@ fn grid_photon_irradiance(p: GridPhoton, x: vec3f, n: vec3f, tolerance: f32) -> 
     let tb = tangent_frame(p.normal.xyz);
     let local = vec2f(dot(d, tb[0]), dot(d, tb[1])) / h;
     if (any(abs(local) >= vec2f(1.0))) { return vec4f(0.0); }
-    let tent = (1.0 - abs(local.x)) * (1.0 - abs(local.y));
-    return vec4f(p.power.rgb * tent / (h * h), 1.0);
+    return vec4f(quad_irradiance(p.power.rgb, local, h), 1.0);
 }

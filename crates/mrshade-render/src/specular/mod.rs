@@ -406,15 +406,9 @@ impl SpecularStage {
         resolve_textures.push(ism_params.as_entire_binding());
         resolve_textures
             .extend([TextureView(&caustic_buffer.levels[1].rv.view), TextureView(&caustic_buffer.levels[1].r.view)]);
-        // The photons' world-space grid, or an empty one.
-        let no_grid;
-        let grid = match &caustics {
-            Some(c) => &c.grid,
-            None => {
-                no_grid = caustics::PhotonGrid::new(device, 0, &inputs.settings.caustics);
-                &no_grid
-            }
-        };
+        // The photons' world-space grid, or an empty one (13 words; the bind group keeps it).
+        let no_grid = caustics::PhotonGrid::new(device, 0, &inputs.settings.caustics);
+        let grid = caustics.as_ref().map_or(&no_grid, |c| &c.grid);
         resolve_textures.extend([grid.heads.as_entire_binding(), grid.photons.as_entire_binding()]);
         let mut resolve_buffers: Vec<wgpu::BindingResource> =
             scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
@@ -596,6 +590,7 @@ pub const RESOLVE_SHADER: &str = wgsl!(
     "../../shaders/lib/vpl_light.wgsl",
     "tracing.wgsl",
     "caustics/levels.wgsl",
+    "../../shaders/lib/photon.wgsl",
     "../../shaders/lib/photon_grid.wgsl",
     "resolve.wgsl",
 );

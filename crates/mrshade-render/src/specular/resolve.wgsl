@@ -135,7 +135,7 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
     // lets through onto it (with them, desk-glass's region FLIP went 0.111 → 0.134 for `dir`
     // at 32 frames on lavapipe: the desk under the glass bunny, seen through it, twice lit).
     let caustic = grid_caustics(s.position, s.normal);
-    let diffuse = s.base_color * (1.0 - s.metallic) * (1.0 - s.transmission) / PI;
+    let diffuse = caustic_brdf(s.base_color, s.metallic, s.transmission);
     light.rv += probe + vpl.rv * f32(stride) + diffuse * caustic.rv;
     light.r += probe * r_p + vpl.r * f32(stride) + diffuse * caustic.r * r_p;
     return light;
@@ -322,6 +322,12 @@ fn caustic_levels(fine: texture_2d<f32>, coarse: texture_2d<f32>, pixel: vec2i) 
         + caustic_irradiance(caustic_texel(coarse, pixel, divisor * COARSE_LEVEL_FACTOR));
 }
 
+// The diffuse BRDF through which a surface of `base` colour, `metallic` and `transmission`
+// turns caustic irradiance into radiance.
+fn caustic_brdf(base: vec3f, metallic: f32, transmission: f32) -> vec3f {
+    return base * (1.0 - metallic) * (1.0 - transmission) / PI;
+}
+
 // The caustics on the diffuse surface at `pixel` (spec §2.17.4–§2.17.5, Eq. T5.4–T5.6): the
 // caustic buffer's irradiance through the surface's diffuse BRDF, of the L_rv photons and, on
 // a real surface, of the L_r photons (radiance, before exposure).
@@ -329,7 +335,7 @@ fn caustic_radiance(pixel: vec2i, flags: u32) -> Radiance {
     if (!is_covered(flags)) { return Radiance(vec3f(0.0), vec3f(0.0)); }
     let am = textureLoad(gbuffer_albedo_metallic, pixel, 0);
     let m = materials[material_of(flags)];
-    let diffuse = am.rgb * (1.0 - am.a) * (1.0 - m.transmission.x) / PI;
+    let diffuse = caustic_brdf(am.rgb, am.a, m.transmission.x);
     let e_rv = caustic_levels(caustics_rv, caustics_coarse_rv, pixel);
     var e_r = vec3f(0.0);
     if (is_real(flags)) { e_r = caustic_levels(caustics_r, caustics_coarse_r, pixel); }

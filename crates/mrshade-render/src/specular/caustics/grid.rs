@@ -7,6 +7,13 @@ use wgpu::util::DeviceExt;
 
 /// Words of the grid buffer before the list heads (`GRID_HEADER` in photon_grid.wgsl).
 pub const GRID_HEADER_WORDS: u64 = 12;
+/// Header word of `splat_min`, written once (`GRID_SPLAT_MIN_WORD` in photon_grid.wgsl).
+pub const GRID_SPLAT_MIN_WORD: u64 = 1;
+/// Header word of the depth epsilon, written once (`GRID_EPSILON_WORD`).
+pub const GRID_EPSILON_WORD: u64 = 2;
+/// First header word of the photons' box (`GRID_BOX_MIN_WORD`), from which the frame's clear
+/// runs through the list heads.
+pub const GRID_BOX_MIN_WORD: u64 = 4;
 /// Bytes of one listed photon (`GridPhoton` in photon_grid.wgsl).
 pub const GRID_PHOTON_BYTES: u64 = 48;
 /// List heads of the grid: 2^18 (1 MiB), some ten times the landed photons of a light at the
@@ -29,8 +36,8 @@ impl PhotonGrid {
     pub fn new(device: &wgpu::Device, capacity: u64, settings: &CausticsSettings) -> Self {
         let heads = if capacity == 0 { 1 } else { GRID_HEADS };
         let mut words = vec![0u32; (GRID_HEADER_WORDS + heads) as usize];
-        words[1] = settings.splat_min.to_bits();
-        words[2] = settings.depth_epsilon.to_bits();
+        words[GRID_SPLAT_MIN_WORD as usize] = settings.splat_min.to_bits();
+        words[GRID_EPSILON_WORD as usize] = settings.depth_epsilon.to_bits();
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
         Self {
             heads: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -48,10 +55,9 @@ impl PhotonGrid {
     }
 
     /// Empties the grid for this frame's photons (before the photon pass's `cs_size`): its
-    /// levels, box and list heads; splat_min and the depth epsilon (header words 1 and 2)
-    /// stay.
+    /// levels (word 0), box and list heads; splat_min and the depth epsilon stay.
     pub fn clear(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.clear_buffer(&self.heads, 0, Some(4));
-        encoder.clear_buffer(&self.heads, 16, None);
+        encoder.clear_buffer(&self.heads, GRID_BOX_MIN_WORD * 4, None);
     }
 }

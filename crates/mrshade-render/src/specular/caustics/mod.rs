@@ -16,7 +16,9 @@ use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
 
 mod grid;
-pub use grid::{GRID_HEADER_WORDS, GRID_PHOTON_BYTES, PhotonGrid};
+pub use grid::{
+    GRID_BOX_MIN_WORD, GRID_EPSILON_WORD, GRID_HEADER_WORDS, GRID_PHOTON_BYTES, GRID_SPLAT_MIN_WORD, PhotonGrid,
+};
 
 /// Mirrors `CausticParams` in photons.wgsl.
 #[repr(C)]

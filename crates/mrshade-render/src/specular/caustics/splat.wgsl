@@ -73,8 +73,7 @@ fn fs_main(in: Splat) -> Targets {
     if (distance(world, surface) > caustics.splat.w * to_camera || dot(n, photon.normal.xyz) < 0.5) {
         discard;
     }
-    let tent = (1.0 - abs(in.local.x)) * (1.0 - abs(in.local.y));
-    let e = vec4f(photon.power.rgb * tent / (in.half_size * in.half_size), 1.0);
+    let e = vec4f(quad_irradiance(photon.power.rgb, in.local, in.half_size), 1.0);
     let kind = (in.photon / (caustics.info.x * caustics.info.x)) % PHOTON_KINDS;
     var out: Targets;
     if (kind < 2u) { out.rv = e; } else { out.r = e; }
