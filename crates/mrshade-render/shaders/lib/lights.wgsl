@@ -48,3 +48,13 @@ fn light_incident(light: Light, p: vec3f) -> Incident {
     out.radiance = light.intensity.rgb * falloff;
     return out;
 }
+
+// How far toward `light` the point `p` lies: its height along the direction toward a
+// directional light, minus its distance from any other. A surface nearer the light is higher.
+// The RSM resolve writes each texel's (RsmPass::heights) for shadow tests, NO_RSM_HEIGHT where
+// the texel sees nothing.
+fn rsm_height(light: Light, p: vec3f) -> f32 {
+    if (light.info.x == LIGHT_DIRECTIONAL) { return -dot(p, light.direction_real.xyz); }
+    return -distance(p, light.position.xyz);
+}
+const NO_RSM_HEIGHT: f32 = -3.0e38;

@@ -1,7 +1,8 @@
 // The probe's directional lights and their real-only and virtual-only maps
 // (methods/probe_maps.rs), for shadowing the probe's light at a surface point. The including
 // shader binds, in one group: probe_lights (array<Light>), probe_clip_from_world
-// (array<mat4x4f>), probe_rsm (array<RsmTexel>), probe_pairs (array<vec4u>: real-only layer,
+// (array<mat4x4f>), probe_heights (array<f32>: the maps' heights toward their lights,
+// rsm_height), probe_pairs (array<vec4u>: real-only layer,
 // virtual-only layer, light, the light's angular radius as f32 bits) and probe_info (vec4u:
 // lights, map side, shadow resolution). Needs shaders/lib/probe_light.wgsl before it.
 
@@ -16,11 +17,10 @@ fn probe_map_texel(layer: u32, p: vec3f) -> i32 {
 }
 
 // Whether the map texel `texel` holds a surface nearer to the light (along `l`, toward it)
-// than `p`, beyond `bias`.
+// than `p`, beyond `bias` (a texel that sees nothing holds NO_RSM_HEIGHT: never).
 fn probe_map_blocked(texel: i32, p: vec3f, l: vec3f, bias: f32) -> bool {
     if (texel < 0) { return false; }
-    let t = probe_rsm[texel];
-    return t.position.w > 0.5 && dot(t.position.xyz - p, l) > bias;
+    return probe_heights[texel] - dot(p, l) > bias;
 }
 
 // Half a texel of the map (its side is the light's texel size × resolution): how far a point

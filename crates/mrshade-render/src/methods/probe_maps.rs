@@ -223,16 +223,17 @@ impl ProbeMaps {
         ]
     }
 
-    /// The lights, their layers' `clip_from_world`, the maps' texels, the pairs and the info.
+    /// The lights, their layers' `clip_from_world`, the maps' heights toward their lights, the
+    /// pairs and the info.
     pub fn resources(&self) -> [wgpu::BindingResource<'_>; 5] {
-        let (lights, clips, texels) = match &self.drawn {
-            Some((set, rsm)) => (&set.buffer, &set.clip_from_world, &rsm.texels),
+        let (lights, clips, heights) = match &self.drawn {
+            Some((set, rsm)) => (&set.buffer, &set.clip_from_world, &rsm.heights),
             None => (&self.unused, &self.unused, &self.unused),
         };
         [
             lights.as_entire_binding(),
             clips.as_entire_binding(),
-            texels.as_entire_binding(),
+            heights.as_entire_binding(),
             self.pairs.as_entire_binding(),
             self.info.as_entire_binding(),
         ]

@@ -26,7 +26,7 @@
 // The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
 @group(1) @binding(1) var<storage, read> probe_lights: array<Light>;
 @group(1) @binding(2) var<storage, read> probe_clip_from_world: array<mat4x4f>;
-@group(1) @binding(3) var<storage, read> probe_rsm: array<RsmTexel>;
+@group(1) @binding(3) var<storage, read> probe_heights: array<f32>;
 @group(1) @binding(4) var<storage, read> probe_pairs: array<vec4u>;
 @group(1) @binding(5) var<uniform> probe_info: vec4u;
 

@@ -39,7 +39,7 @@
 // The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
 @group(3) @binding(4) var<storage, read> probe_lights: array<Light>;
 @group(3) @binding(5) var<storage, read> probe_clip_from_world: array<mat4x4f>;
-@group(3) @binding(6) var<storage, read> probe_rsm: array<RsmTexel>;
+@group(3) @binding(6) var<storage, read> probe_heights: array<f32>;
 @group(3) @binding(7) var<storage, read> probe_pairs: array<vec4u>;
 @group(3) @binding(8) var<uniform> probe_info: vec4u;
 

@@ -16,6 +16,8 @@ use wgpu::util::DeviceExt;
 
 /// Bytes of one `RsmTexel`.
 pub const TEXEL_BYTES: u64 = 80;
+/// Bytes of one texel's height toward its light (`RsmPass::heights`).
+const HEIGHT_BYTES: u64 = 4;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -38,7 +40,7 @@ pub(crate) fn fit_resolution(fit: &mut Fit, name: &str, layers: u64, resolution:
 /// GPU bytes of `layers` maps of side `resolution`: depth, texels, raster targets, views.
 pub(crate) fn bytes(layers: u64, resolution: u32) -> u64 {
     let res = resolution as u64;
-    layers * (res * res * (8 + TEXEL_BYTES + 11) + crate::limits::VIEW_BYTES)
+    layers * (res * res * (8 + TEXEL_BYTES + HEIGHT_BYTES + 11) + crate::limits::VIEW_BYTES)
 }
 
 /// The RSM of every light layer, with importance pyramids.
@@ -51,6 +53,10 @@ pub struct RsmPass {
     level_groups: Vec<wgpu::BindGroup>,
     /// `layers × resolution²` RSM texels.
     pub texels: wgpu::Buffer,
+    /// Per texel, how far toward its light the surface lies (f32; shaders/lib/rsm_texel.wgsl
+    /// `rsm_height`): a depth map of 4 bytes a texel for shadow tests, which would otherwise
+    /// read 80-byte texels for their positions.
+    pub heights: wgpu::Buffer,
     /// Per layer, `pyramid_stride` (importance, coverage) pairs: every level, finest first.
     pub pyramid: wgpu::Buffer,
     /// Side of every layer.
@@ -99,6 +105,7 @@ impl RsmPass {
         let levels = res.ilog2() + 1;
         let pyramid_stride: u32 = (0..levels).map(|l| (res >> l) * (res >> l)).sum();
         let texels = buffer("rsm/texels", count * texel_count * TEXEL_BYTES);
+        let heights = buffer("rsm/heights", count * texel_count * HEIGHT_BYTES);
         let pyramid = buffer("rsm/pyramid", count * pyramid_stride as u64 * 8);
 
         let storage = |label: &str, contents: &[u8]| {
@@ -128,6 +135,7 @@ impl RsmPass {
         let mut entries: Vec<wgpu::BindGroupLayoutEntry> = vec![bind::uniform(0, cs)];
         entries.extend((1..10).map(|b| bind::storage(b, cs)));
         entries.push(rw);
+        entries.push(bind::storage_rw(11, cs));
         let resolve_layout = bind::layout(device, "rsm/resolve_layout", &entries);
         let texture_layout = bind::layout(device, "rsm/texture_layout", &GpuMaterials::texture_entries(0, cs));
         let g = &scene.geometry;
@@ -156,6 +164,7 @@ impl RsmPass {
                     layer_light.as_entire_binding(),
                     visibility.as_entire_binding(),
                     texels.as_entire_binding(),
+                    heights.as_entire_binding(),
                 ],
             ),
             bind::group(device, "rsm/texture_group", &texture_layout, &m.texture_resources()),
@@ -207,6 +216,7 @@ impl RsmPass {
             reduce,
             level_groups,
             texels,
+            heights,
             pyramid,
             resolution: res,
             layers: layers.len() as u32,

@@ -23,6 +23,8 @@ struct RsmParams {
 @group(0) @binding(8) var<storage, read> layer_light: array<u32>;
 @group(0) @binding(9) var<storage, read> visibility: array<vec2u>;
 @group(0) @binding(10) var<storage, read_write> rsm: array<RsmTexel>;
+// Per texel, the surface's height toward the light (rsm_height), NO_RSM_HEIGHT where none.
+@group(0) @binding(11) var<storage, read_write> heights: array<f32>;
 
 @group(1) @binding(0) var textures_srgb: texture_2d_array<f32>;
 @group(1) @binding(1) var textures_linear: texture_2d_array<f32>;
@@ -60,11 +62,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let texel = visibility[index];
     let triangle = visibility_triangle(texel);
     var out: RsmTexel;
+    let light = lights[layer_light[layer]];
     if (triangle == 0u) {
         rsm[index] = out;
+        heights[index] = NO_RSM_HEIGHT;
         return;
     }
-    let light = lights[layer_light[layer]];
     let st = vec2f(id.xy) + 0.5;
     let ray = light_ray(layer, light, st);
     let h = intersect(triangle - 1u, ray.origin, ray.dir);
@@ -106,4 +109,5 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     out.power = vec4f(power, importance);
     out.material = vec4f((m.dielectric.r + m.dielectric.g + m.dielectric.b) / 3.0, m.dielectric.a, select(0.0, 1.0, (inst.info.y & SURFACE_REAL) != 0u), length(cross(hx.position - h.position, hy.position - h.position)));
     rsm[index] = out;
+    heights[index] = rsm_height(light, h.position);
 }
