@@ -4,7 +4,8 @@
 // (array<mat4x4f>), probe_heights (array<f32>: the maps' heights toward their lights,
 // rsm_height), probe_pairs (array<vec4u>: real-only layer,
 // virtual-only layer, light, the light's angular radius as f32 bits) and probe_info (vec4u:
-// lights, map side, shadow resolution). Needs shaders/lib/probe_light.wgsl before it.
+// lights, map side, shadow resolution). Needs shaders/lib/lights.wgsl and
+// shaders/lib/probe_light.wgsl before it.
 
 // Where `p` falls in the map of `layer`: its texel, or -1 outside the map.
 fn probe_map_texel(layer: u32, p: vec3f) -> i32 {
@@ -16,11 +17,11 @@ fn probe_map_texel(layer: u32, p: vec3f) -> i32 {
     return i32((layer * res + st.y) * res + st.x);
 }
 
-// Whether the map texel `texel` holds a surface nearer to the light (along `l`, toward it)
-// than `p`, beyond `bias` (a texel that sees nothing holds NO_RSM_HEIGHT: never).
-fn probe_map_blocked(texel: i32, p: vec3f, l: vec3f, bias: f32) -> bool {
+// Whether the map texel `texel` holds a surface nearer to the light than a point of
+// rsm_height `height`, beyond `bias` (a texel that sees nothing holds NO_RSM_HEIGHT: never).
+fn probe_map_blocked(texel: i32, height: f32, bias: f32) -> bool {
     if (texel < 0) { return false; }
-    return probe_heights[texel] - dot(p, l) > bias;
+    return probe_heights[texel] - height > bias;
 }
 
 // Half a texel of the map (its side is the light's texel size × resolution): how far a point
@@ -33,15 +34,16 @@ fn probe_map_bias(light: Light) -> f32 {
     return 0.5 * light.cone.z * f32(probe_info.z) / f32(probe_info.y);
 }
 
-// Probe light `i` seen from `p` (normal `n`): its pair of maps, the direction toward it, its
-// irradiance E·⟨n, l⟩₊ and that weighted by its sharpness (probe_light_sharpness), and the
-// point lifted by the maps' bias where they are read.
+// Probe light `i` seen from `p` (normal `n`): its pair of maps, its irradiance E·⟨n, l⟩₊ and
+// that weighted by its sharpness (probe_light_sharpness), the point lifted by the maps' bias
+// where they are read, and that point's height toward the light (rsm_height, as the maps'
+// texels hold theirs).
 struct ProbeMapLight {
     pair: vec4u,
-    l: vec3f,
     e: vec3f,
     w: vec3f,
     q: vec3f,
+    height: f32,
     bias: f32,
 }
 
@@ -51,7 +53,8 @@ fn probe_map_light(i: u32, p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapLigh
     let l = -light.direction_real.xyz;
     let e = light.intensity.rgb * max(dot(n, l), 0.0);
     let bias = probe_map_bias(light);
-    return ProbeMapLight(pair, l, e, e * probe_light_sharpness(pair.w, sharp_below), p + n * bias, bias);
+    let q = p + n * bias;
+    return ProbeMapLight(pair, e, e * probe_light_sharpness(pair.w, sharp_below), q, rsm_height(light, q), bias);
 }
 
 // Σw·V of both solutions and Σw, w = E_k·⟨n, l_k⟩₊·s_k per channel, over the probe's lights:
@@ -74,8 +77,8 @@ fn probe_map_visibility(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapVisibil
         out.all_weight += k.e;
         if (all(k.w == vec3f(0.0))) { continue; }
         let real = probe_map_texel(k.pair.x, k.q);
-        let v_r = select(1.0, 0.0, probe_map_blocked(real, k.q, k.l, k.bias));
-        let v_v = select(1.0, 0.0, probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.q, k.l, k.bias));
+        let v_r = select(1.0, 0.0, probe_map_blocked(real, k.height, k.bias));
+        let v_v = select(1.0, 0.0, probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.height, k.bias));
         out.visible_r += k.w * v_r;
         out.visible_rv += k.w * v_r * v_v;
         out.weight += k.w;
@@ -101,10 +104,10 @@ fn probe_map_real_light(p: vec3f, n: vec3f, sharp_below: f32) -> ProbeMapRealLig
         let k = probe_map_light(i, p, n, sharp_below);
         out.all_weight += k.e;
         if (all(k.e == vec3f(0.0))) { continue; }
-        if (probe_map_blocked(probe_map_texel(k.pair.x, k.q), k.q, k.l, k.bias)) { continue; }
+        if (probe_map_blocked(probe_map_texel(k.pair.x, k.q), k.height, k.bias)) { continue; }
         out.visible_r += k.e;
         if (sharp_below <= 0.0 || all(k.w == vec3f(0.0))) { continue; }
-        if (probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.q, k.l, k.bias)) { out.blocked += k.w; }
+        if (probe_map_blocked(probe_map_texel(k.pair.y, k.q), k.height, k.bias)) { out.blocked += k.w; }
     }
     return out;
 }

@@ -53,7 +53,7 @@ pub struct RsmPass {
     level_groups: Vec<wgpu::BindGroup>,
     /// `layers × resolution²` RSM texels.
     pub texels: wgpu::Buffer,
-    /// Per texel, how far toward its light the surface lies (f32; shaders/lib/rsm_texel.wgsl
+    /// Per texel, how far toward its light the surface lies (f32; shaders/lib/lights.wgsl
     /// `rsm_height`): a depth map of 4 bytes a texel for shadow tests, which would otherwise
     /// read 80-byte texels for their positions.
     pub heights: wgpu::Buffer,

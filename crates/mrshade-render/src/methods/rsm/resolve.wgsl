@@ -62,12 +62,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let texel = visibility[index];
     let triangle = visibility_triangle(texel);
     var out: RsmTexel;
-    let light = lights[layer_light[layer]];
     if (triangle == 0u) {
         rsm[index] = out;
         heights[index] = NO_RSM_HEIGHT;
         return;
     }
+    let light = lights[layer_light[layer]];
     let st = vec2f(id.xy) + 0.5;
     let ray = light_ray(layer, light, st);
     let h = intersect(triangle - 1u, ray.origin, ray.dir);
