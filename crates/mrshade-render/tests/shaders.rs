@@ -288,7 +288,7 @@ fn interiors_match() {
 fn caustic_structs_match() {
     use mrshade_render::specular::caustics::{
         COARSE_LEVEL_FACTOR, CausticParams, GRID_BOX_MIN_WORD, GRID_EPSILON_WORD, GRID_HEADER_WORDS, GRID_PHOTON_BYTES,
-        GRID_SPLAT_MIN_WORD, PHOTON_BYTES, PHOTONS_SHADER, SPLAT_SHADER,
+        GRID_RANGES_WORKGROUP, GRID_SPLAT_MIN_WORD, GRID_TOTAL_WORD, PHOTON_BYTES, PHOTONS_SHADER, SPLAT_SHADER,
     };
     assert_layout(
         PHOTONS_SHADER,
@@ -307,10 +307,12 @@ fn caustic_structs_match() {
         ("GRID_SPLAT_MIN_WORD", GRID_SPLAT_MIN_WORD),
         ("GRID_EPSILON_WORD", GRID_EPSILON_WORD),
         ("GRID_BOX_MIN_WORD", GRID_BOX_MIN_WORD),
+        ("GRID_TOTAL_WORD", GRID_TOTAL_WORD),
     ] {
         assert!(PHOTONS_SHADER.contains(&format!("const {name}: u32 = {word}u;")), "{name} = {word}");
     }
     assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
+    assert!(PHOTONS_SHADER.contains(&format!("@compute @workgroup_size({GRID_RANGES_WORKGROUP})\nfn cs_grid_ranges")));
 }
 
 #[test]

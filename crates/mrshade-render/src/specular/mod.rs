@@ -354,7 +354,7 @@ impl SpecularStage {
         resolve_entries.extend((5..=18).map(|b| bind::texture(b, cs, unfilterable, d2)));
         resolve_entries.push(bind::uniform(19, cs));
         resolve_entries.extend((20..=21).map(|b| bind::texture(b, cs, unfilterable, d2)));
-        resolve_entries.extend((22..=23).map(|b| bind::storage(b, cs)));
+        resolve_entries.extend((22..=24).map(|b| bind::storage(b, cs)));
         let resolve_inputs = bind::layout(device, "specular/resolve_inputs", &resolve_entries);
         let resolve_scene = bind::layout(device, "specular/resolve_scene", &storage_entries(20));
         // The probe (bindings 0–3) and the material textures hit surfaces are shaded with.
@@ -406,10 +406,10 @@ impl SpecularStage {
         resolve_textures.push(ism_params.as_entire_binding());
         resolve_textures
             .extend([TextureView(&caustic_buffer.levels[1].rv.view), TextureView(&caustic_buffer.levels[1].r.view)]);
-        // The photons' world-space grid, or an empty one (13 words; the bind group keeps it).
+        // The photons' world-space grid, or an empty one (14 words; the bind group keeps it).
         let no_grid = caustics::PhotonGrid::new(device, 0, &inputs.settings.caustics);
         let grid = caustics.as_ref().map_or(&no_grid, |c| &c.grid);
-        resolve_textures.extend([grid.heads.as_entire_binding(), grid.photons.as_entire_binding()]);
+        resolve_textures.extend([&grid.heads, &grid.photons, &grid.entries].map(|b| b.as_entire_binding()));
         let mut resolve_buffers: Vec<wgpu::BindingResource> =
             scene_buffers.iter().map(|b| b.as_entire_binding()).collect();
         resolve_buffers.extend([

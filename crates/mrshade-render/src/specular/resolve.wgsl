@@ -43,6 +43,7 @@
 // camera does not see.
 @group(0) @binding(22) var<storage, read> grid: array<u32>;
 @group(0) @binding(23) var<storage, read> grid_photons: array<GridPhoton>;
+@group(0) @binding(24) var<storage, read> grid_entries: array<u32>;
 
 @group(1) @binding(0) var<storage, read> instances: array<Instance>;
 @group(1) @binding(1) var<storage, read> vertices: array<f32>;
@@ -145,8 +146,9 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
 const GRID_VISITS: u32 = 4096u;
 
 // The caustic irradiance at `x` (normal `n`) of the L_rv and of the L_r photons, from the
-// photons' world-space grid: the quads of the 2×2×2 cells nearest to `x` on every level that
-// holds photons, each photon counted in its own cell only (cells may share a list head).
+// photons' world-space grid: the quads listed in the block of the 2×2×2 cells nearest to `x`
+// on every level that holds photons, each photon counted in its own block only (blocks may
+// share a head).
 fn grid_caustics(x: vec3f, n: vec3f) -> Radiance {
     var rv = vec4f(0.0);
     var r = vec4f(0.0);
@@ -166,24 +168,24 @@ fn grid_caustics(x: vec3f, n: vec3f) -> Radiance {
     );
     if (any(x < lo - tolerance) || any(x > hi + tolerance)) { return Radiance(vec3f(0.0), vec3f(0.0)); }
     let splat_min = bitcast<f32>(grid[GRID_SPLAT_MIN_WORD]);
-    let words = arrayLength(&grid);
+    let heads = grid_heads(arrayLength(&grid));
+    let entries = arrayLength(&grid_entries);
     var visits = 0u;
     for (var level = 0u; level < GRID_LEVELS; level++) {
         if ((levels & (1u << level)) == 0u) { continue; }
-        let base = vec3i(floor(x / grid_cell_size(level, splat_min) - 0.5));
-        for (var k = 0u; k < 8u; k++) {
-            let cell = base + vec3i(vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u));
-            var next = grid[grid_head(level, cell, words)];
-            while (next != 0u && visits < GRID_VISITS) {
-                let p = grid_photons[next - 1u];
-                next = bitcast<u32>(p.power.w);
-                visits++;
-                let own = grid_level(p.position.w, splat_min);
-                if (own != level || any(grid_cell(p.position.xyz, level, splat_min) != cell)) { continue; }
-                let e = grid_photon_irradiance(p, x, n, tolerance);
-                if (p.normal.w == 0.0) { rv += e; } else { r += e; }
-            }
+        let block = grid_block(x, level, splat_min);
+        let head = grid_head(level, block, heads);
+        let end = min(grid[grid_end_word(head, heads)], entries);
+        let count = min(grid[grid_count_word(head)], GRID_VISITS - visits);
+        for (var i = end - min(count, end); i < end; i++) {
+            let p = grid_photons[grid_entries[i]];
+            let own = grid_cell(p.position.xyz, level, splat_min) - block;
+            if (grid_level(p.position.w, splat_min) != level || any(own < vec3i(0)) || any(own > vec3i(1))) { continue; }
+            let e = grid_photon_irradiance(p, x, n, tolerance);
+            if (p.normal.w == 0.0) { rv += e; } else { r += e; }
         }
+        visits += count;
+        if (visits >= GRID_VISITS) { break; }
     }
     return Radiance(caustic_irradiance(rv), caustic_irradiance(r));
 }

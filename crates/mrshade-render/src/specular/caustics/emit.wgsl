@@ -23,10 +23,11 @@
 // The landed photons of each caustic level (level × photon_slots() + i), and their draws.
 @group(2) @binding(1) var<storage, read_write> splat_list: array<u32>;
 @group(2) @binding(2) var<storage, read_write> splat_draws: array<SplatDraw, 2>;
-// The world-space grid of the landed photons (shaders/lib/photon_grid.wgsl): header and list
-// heads, and the photons it lists.
+// The world-space grid of the landed photons (shaders/lib/photon_grid.wgsl): header, block
+// counts and range ends; the photons it lists; its blocks' ranges of photon indices.
 @group(2) @binding(3) var<storage, read_write> grid: array<atomic<u32>>;
 @group(2) @binding(4) var<storage, read_write> grid_photons: array<GridPhoton>;
+@group(2) @binding(5) var<storage, read_write> grid_entries: array<u32>;
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -207,9 +208,10 @@ fn nearer(a: f32, b: f32) -> f32 {
 var<workgroup> group_levels: atomic<u32>;
 var<workgroup> group_box: array<atomic<u32>, 6>;
 
-// Lists the landed photon `index` (its half-size sized) in the world-space grid, at the same
-// index, as a photon of L_r (`of_r` 1) or of L_rv (0).
-fn grid_insert(index: u32, of_r: f32) {
+// Counts the landed photon `index` (its half-size sized) in the eight blocks of the
+// world-space grid that hold its cell, and copies it there, as a photon of L_r (`of_r` 1) or
+// of L_rv (0); cs_grid_scatter lists it once the blocks' ranges are known.
+fn grid_count(index: u32, of_r: f32) {
     let photon = photons[index];
     let splat_min = caustics.splat.x;
     let p = photon.position.xyz;
@@ -221,9 +223,11 @@ fn grid_insert(index: u32, of_r: f32) {
         atomicMax(&group_box[axis], ~order_key(p[axis] - reach[axis]));
         atomicMax(&group_box[3u + axis], order_key(p[axis] + reach[axis]));
     }
-    let head = grid_head(level, grid_cell(p, level, splat_min), arrayLength(&grid));
-    let next = atomicExchange(&grid[head], index + 1u);
-    grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, of_r), vec4f(photon.power.rgb, bitcast<f32>(next)));
+    let blocks = grid_block_heads(grid_cell(p, level, splat_min), level, grid_heads(arrayLength(&grid)));
+    for (var k = 0u; k < 8u; k++) {
+        if (blocks[k] != GRID_NO_HEAD) { atomicAdd(&grid[grid_count_word(blocks[k])], 1u); }
+    }
+    grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, of_r), vec4f(photon.power.rgb, 0.0));
 }
 
 // Adds the workgroup's levels and box to the grid's header, once per workgroup (local
@@ -276,7 +280,7 @@ fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
         landed[kind] = true;
         // The probe's photons stay off the grid: surfaces off screen take the probe
         // unshadowed (resolve.wgsl, shade_hit), which holds the sky a glass lets through.
-        if (caustics.info.z == 0u) { grid_insert(index, select(0.0, 1.0, kind >= 2u)); }
+        if (caustics.info.z == 0u) { grid_count(index, select(0.0, 1.0, kind >= 2u)); }
     }
     workgroupBarrier();
     grid_header_update(local);
@@ -289,5 +293,52 @@ fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
         if (!landed[kind]) { continue; }
         let l = listed[kind];
         splat_list[l.y * photon_slots() + group_base[l.y] + l.z] = l.x;
+    }
+}
+
+// Each block's range of the grid's entries (after cs_size counted them), one thread per
+// block head: the workgroup's blocks take one share of the entries, handed out by a single
+// atomic (the ranges' order does not matter). A range's start goes where its end will be.
+var<workgroup> group_entries: atomic<u32>;
+var<workgroup> group_start: u32;
+
+@compute @workgroup_size(256)
+fn cs_grid_ranges(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    if (local == 0u) { atomicStore(&group_entries, 0u); }
+    workgroupBarrier();
+    let heads = grid_heads(arrayLength(&grid));
+    let head = id.x;
+    var count = 0u;
+    if (head < heads) { count = atomicLoad(&grid[grid_count_word(head)]); }
+    var offset = 0u;
+    if (count != 0u) { offset = atomicAdd(&group_entries, count); }
+    workgroupBarrier();
+    if (local == 0u) {
+        let total = atomicLoad(&group_entries);
+        if (total != 0u) { group_start = atomicAdd(&grid[GRID_TOTAL_WORD], total); }
+    }
+    workgroupBarrier();
+    if (count != 0u) { atomicStore(&grid[grid_end_word(head, heads)], group_start + offset); }
+}
+
+// Lists each landed photon of the punctual lights in the ranges of the blocks cs_size
+// counted it in (their ends then lie past their last entries).
+@compute @workgroup_size(8, 8)
+fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
+    let res = caustics.info.x;
+    if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
+    let heads = grid_heads(arrayLength(&grid));
+    let splat_min = caustics.splat.x;
+    for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
+        let index = photon_index(id.z, kind, id.xy);
+        let photon = photons[index];
+        if (photon.position.w == 0.0) { continue; }
+        let level = grid_level(photon.normal.w, splat_min);
+        let blocks = grid_block_heads(grid_cell(photon.position.xyz, level, splat_min), level, heads);
+        for (var k = 0u; k < 8u; k++) {
+            if (blocks[k] == GRID_NO_HEAD) { continue; }
+            let slot = atomicAdd(&grid[grid_end_word(blocks[k], heads)], 1u);
+            if (slot < arrayLength(&grid_entries)) { grid_entries[slot] = index; }
+        }
     }
 }

@@ -12,21 +12,31 @@ pub const GRID_SPLAT_MIN_WORD: u64 = 1;
 /// Header word of the depth epsilon, written once (`GRID_EPSILON_WORD`).
 pub const GRID_EPSILON_WORD: u64 = 2;
 /// First header word of the photons' box (`GRID_BOX_MIN_WORD`), from which the frame's clear
-/// runs through the list heads.
+/// runs through the block counts.
 pub const GRID_BOX_MIN_WORD: u64 = 4;
+/// Header word of the entries handed out (`GRID_TOTAL_WORD`), cleared with the box.
+pub const GRID_TOTAL_WORD: u64 = 11;
 /// Bytes of one listed photon (`GridPhoton` in photon_grid.wgsl).
 pub const GRID_PHOTON_BYTES: u64 = 48;
-/// List heads of the grid: 2^18 (1 MiB), some ten times the landed photons of a light at the
-/// default photon resolution, so that few cells share a head.
+/// Block heads of the grid: 2^18 (a count and a range end each, 2 MiB), some ten times the
+/// landed photons of a light at the default photon resolution, so that few blocks share one.
 pub const GRID_HEADS: u64 = 1 << 18;
+/// Blocks a photon is listed in: the 2×2×2 that hold its cell.
+pub const GRID_BLOCKS_PER_PHOTON: u64 = 8;
+/// Workgroup size of `cs_grid_ranges` (one thread per block head).
+pub const GRID_RANGES_WORKGROUP: u64 = 256;
 
 /// The grid's buffers.
 pub struct PhotonGrid {
-    /// Header (levels used as bits, splat_min, depth epsilon, the photons' box) and list
-    /// heads.
+    /// Header (levels used as bits, splat_min, depth epsilon, the photons' box, the entries
+    /// handed out), block counts and range ends.
     pub heads: wgpu::Buffer,
     /// The listed photons, at their indices in the punctual lights' photon G-buffer.
     pub photons: wgpu::Buffer,
+    /// The blocks' ranges of photon indices, eight entries per photon slot.
+    pub entries: wgpu::Buffer,
+    /// Block heads (a power of two; 1 in an empty grid).
+    pub head_count: u64,
 }
 
 impl PhotonGrid {
@@ -34,8 +44,8 @@ impl PhotonGrid {
     /// `settings`; with 0, an empty one that no lookup reads past its header (the resolve's
     /// binding when no photons are traced).
     pub fn new(device: &wgpu::Device, capacity: u64, settings: &CausticsSettings) -> Self {
-        let heads = if capacity == 0 { 1 } else { GRID_HEADS };
-        let mut words = vec![0u32; (GRID_HEADER_WORDS + heads) as usize];
+        let head_count = if capacity == 0 { 1 } else { GRID_HEADS };
+        let mut words = vec![0u32; (GRID_HEADER_WORDS + 2 * head_count) as usize];
         words[GRID_SPLAT_MIN_WORD as usize] = settings.splat_min.to_bits();
         words[GRID_EPSILON_WORD as usize] = settings.depth_epsilon.to_bits();
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
@@ -51,13 +61,22 @@ impl PhotonGrid {
                 usage,
                 mapped_at_creation: false,
             }),
+            entries: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("specular/photon_grid/entries"),
+                size: capacity.max(1) * GRID_BLOCKS_PER_PHOTON * 4,
+                usage,
+                mapped_at_creation: false,
+            }),
+            head_count,
         }
     }
 
     /// Empties the grid for this frame's photons (before the photon pass's `cs_size`): its
-    /// levels (word 0), box and list heads; splat_min and the depth epsilon stay.
+    /// levels (word 0), box, entries handed out and block counts; splat_min and the depth
+    /// epsilon stay, and the range ends are written before they are read.
     pub fn clear(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.clear_buffer(&self.heads, 0, Some(4));
-        encoder.clear_buffer(&self.heads, GRID_BOX_MIN_WORD * 4, None);
+        let counts_end = (GRID_HEADER_WORDS + self.head_count) * 4;
+        encoder.clear_buffer(&self.heads, GRID_BOX_MIN_WORD * 4, Some(counts_end - GRID_BOX_MIN_WORD * 4));
     }
 }

@@ -17,7 +17,8 @@ use wgpu::util::DeviceExt;
 
 mod grid;
 pub use grid::{
-    GRID_BOX_MIN_WORD, GRID_EPSILON_WORD, GRID_HEADER_WORDS, GRID_PHOTON_BYTES, GRID_SPLAT_MIN_WORD, PhotonGrid,
+    GRID_BOX_MIN_WORD, GRID_EPSILON_WORD, GRID_HEADER_WORDS, GRID_PHOTON_BYTES, GRID_RANGES_WORKGROUP,
+    GRID_SPLAT_MIN_WORD, GRID_TOTAL_WORD, PhotonGrid,
 };
 
 /// Mirrors `CausticParams` in photons.wgsl.
@@ -202,7 +203,7 @@ impl Caustics {
         let emit_output = bind::layout(
             device,
             "specular/photons_output",
-            &(0..5).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
+            &(0..6).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
         );
         let emit_probe = bind::layout(device, "specular/photons_probe", &GpuProbe::layout_entries(cs));
         let [impostors, owners, impostor_texels] = inputs.impostors;
@@ -234,6 +235,11 @@ impl Caustics {
             "cs_size",
             &emit_layouts,
         );
+        let [grid_ranges, grid_scatter] =
+            [("specular/photon_grid/ranges", "cs_grid_ranges"), ("specular/photon_grid/scatter", "cs_grid_scatter")]
+                .map(|(label, entry)| {
+                    mrshade_gpu::shader::compute_pipeline_entry(device, label, PHOTONS_SHADER, entry, &emit_layouts)
+                });
 
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
@@ -316,7 +322,8 @@ impl Caustics {
                     device,
                     &format!("{label}/output"),
                     &emit_output,
-                    &[&photons, &list, &draws, &grid.heads, &grid.photons].map(|b| b.as_entire_binding()),
+                    &[&photons, &list, &draws, &grid.heads, &grid.photons, &grid.entries]
+                        .map(|b| b.as_entire_binding()),
                 ),
                 probe_group.clone(),
             ];
@@ -326,6 +333,19 @@ impl Caustics {
             {
                 let workgroups = [side, side, sources * kinds];
                 dispatches.push(Dispatch { pipeline: pipeline.clone(), groups: emit_groups.clone(), workgroups });
+            }
+            if from_probe == 0 {
+                // The grid's counting sort after cs_size counted: the blocks' ranges, then
+                // the photons listed in them.
+                let heads = (grid.head_count / GRID_RANGES_WORKGROUP) as u32;
+                size_dispatches.extend([
+                    Dispatch { pipeline: grid_ranges.clone(), groups: emit_groups.clone(), workgroups: [heads, 1, 1] },
+                    Dispatch {
+                        pipeline: grid_scatter.clone(),
+                        groups: emit_groups.clone(),
+                        workgroups: [side, side, sources],
+                    },
+                ]);
             }
             let splat_groups = [0, 1].map(|level| {
                 bind::group(
