@@ -137,15 +137,6 @@ fn dvct_volume_params_match() {
 }
 
 #[test]
-fn the_voxel_passes_workgroup_matches_their_dispatch() {
-    let [x, y, z] = dvct::VOXEL_GROUP_SIZE;
-    for source in [dvct::LIGHT_SHADER, dvct::BOUNCE_SHADER, dvct::PHOTO_SHADER] {
-        assert!(source.contains(&format!("@workgroup_size({x}, {y}, {z})")));
-        assert!(source.contains(&format!("const VOXEL_GROUP: u32 = {}u;", x * y * z)));
-    }
-}
-
-#[test]
 fn frame_uniforms_match() {
     assert_layout(
         direct::SHADER,

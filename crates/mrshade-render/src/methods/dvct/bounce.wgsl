@@ -19,16 +19,9 @@
 @group(3) @binding(0) var out_rv: texture_storage_3d<rgba16float, write>;
 @group(3) @binding(1) var out_r: texture_storage_3d<rgba16float, write>;
 
-@compute @workgroup_size(8, 8, 4)
-fn cs_main(@builtin(global_invocation_id) own: vec3u, @builtin(local_invocation_index) local: u32) {
-    let job = voxel_job(own, local, VOXEL_REAL | VOXEL_VIRTUAL);
-    // An empty voxel keeps its first bounce (none).
-    if (job.own_empty) {
-        textureStore(out_rv, own, textureLoad(volume_rv, own, 0));
-        textureStore(out_r, own, textureLoad(volume_r, own, 0));
-    }
-    if (!job.busy) { return; }
-    let id = job.voxel;
+@compute @workgroup_size(4, 4, 4)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id >= vec3u(params.info.x))) { return; }
     let index = voxel_index(id);
     let centre = voxel_centre(id);
     let first_rv = textureLoad(volume_rv, id, 0);

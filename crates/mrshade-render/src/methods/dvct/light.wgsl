@@ -55,12 +55,9 @@ fn first_bounce(s: VoxelSurface) -> Radiance {
     return Radiance(s.albedo / PI * (e.rv + probe), s.albedo / PI * (e.r + probe));
 }
 
-@compute @workgroup_size(8, 8, 4)
-fn cs_main(@builtin(global_invocation_id) own: vec3u, @builtin(local_invocation_index) local: u32) {
-    let job = voxel_job(own, local, VOXEL_REAL | VOXEL_VIRTUAL);
-    if (job.own_empty) { store_voxel(own, vec4f(0.0), vec4f(0.0), vec3f(0.0), vec3f(0.0)); }
-    if (!job.busy) { return; }
-    let id = job.voxel;
+@compute @workgroup_size(4, 4, 4)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id >= vec3u(params.info.x))) { return; }
     let index = voxel_index(id);
     let centre = voxel_centre(id);
     var rv = vec4f(0.0);
@@ -91,10 +88,6 @@ fn cs_main(@builtin(global_invocation_id) own: vec3u, @builtin(local_invocation_
         rv = vec4f(first_bounce(s).rv, 1.0);
         n_rv = s.normal;
     }
-    store_voxel(id, rv, r, n_rv, n_r);
-}
-
-fn store_voxel(id: vec3u, rv: vec4f, r: vec4f, n_rv: vec3f, n_r: vec3f) {
     textureStore(out_rv, id, rv);
     textureStore(out_r, id, r);
     textureStore(normal_rv, id, vec4f(n_rv, 0.0));

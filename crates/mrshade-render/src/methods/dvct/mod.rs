@@ -67,10 +67,6 @@ struct MipDispatch {
 /// A pass over every voxel of one cascade: its pipeline and groups.
 type VoxelPass = (wgpu::ComputePipeline, Vec<wgpu::BindGroup>);
 
-/// Workgroup of the passes over the voxels (light, bounce, photo): 256 voxels, whose occupied
-/// ones its first invocations shade (`voxel_job` in surface.wgsl).
-pub const VOXEL_GROUP_SIZE: [u32; 3] = [8, 8, 4];
-
 /// The method's passes and volumes.
 pub struct DvctMethod {
     /// The volume around the virtual content, then the outer one (`dvct.outer_scale` > 1).
@@ -473,17 +469,15 @@ impl DvctMethod {
         }
     }
 
-    /// Records one pass per cascade (`passes` in the cascades' order), in workgroups of
-    /// `VOXEL_GROUP_SIZE` voxels (`@workgroup_size` of light.wgsl, bounce.wgsl, photo_pass.wgsl).
+    /// Records one pass per cascade (`passes` in the cascades' order).
     fn record_voxel_passes(&self, pass: &mut wgpu::ComputePass<'_>, passes: &[VoxelPass]) {
         for ((pipeline, bind_groups), cascade) in passes.iter().zip(&self.cascades) {
-            let res = cascade.resolution();
+            let groups = cascade.resolution().div_ceil(4);
             pass.set_pipeline(pipeline);
             for (i, g) in bind_groups.iter().enumerate() {
                 pass.set_bind_group(i as u32, g, &[]);
             }
-            let [x, y, z] = VOXEL_GROUP_SIZE;
-            pass.dispatch_workgroups(res.div_ceil(x), res.div_ceil(y), res.div_ceil(z));
+            pass.dispatch_workgroups(groups, groups, groups);
         }
     }
 }

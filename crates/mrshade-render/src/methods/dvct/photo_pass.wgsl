@@ -13,25 +13,21 @@
 @group(3) @binding(0) var out_rv: texture_storage_3d<rgba16float, write>;
 @group(3) @binding(1) var out_r: texture_storage_3d<rgba16float, write>;
 
-@compute @workgroup_size(8, 8, 4)
-fn cs_main(@builtin(global_invocation_id) own: vec3u, @builtin(local_invocation_index) local: u32) {
-    let job = voxel_job(own, local, VOXEL_REAL);
-    // A voxel without a real surface keeps its light as the bounce left it.
-    if (job.own_empty) {
-        textureStore(out_rv, own, textureLoad(raw_rv, own, 0));
-        textureStore(out_r, own, textureLoad(raw_r, own, 0));
-    }
-    if (!job.busy) { return; }
-    let id = job.voxel;
+@compute @workgroup_size(4, 4, 4)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id >= vec3u(params.info.x))) { return; }
     let index = voxel_index(id);
     var rv = textureLoad(raw_rv, id, 0);
     var r = textureLoad(raw_r, id, 0);
-    let d = load_triangle(voxel_triangle(voxels[index * 2u]));
-    let at = voxel_point(d, instances[d.instance], voxel_centre(id));
-    let seen = with_photo(rv, r, at.position, at.normal);
-    r = seen[1];
-    // A voxel that holds a virtual surface shows it in the real+virtual volume.
-    if (voxels[index * 2u + 1u] == 0u) { rv = seen[0]; }
+    let real = voxels[index * 2u];
+    if (real != 0u) {
+        let d = load_triangle(voxel_triangle(real));
+        let at = voxel_point(d, instances[d.instance], voxel_centre(id));
+        let seen = with_photo(rv, r, at.position, at.normal);
+        r = seen[1];
+        // A voxel that holds a virtual surface shows it in the real+virtual volume.
+        if (voxels[index * 2u + 1u] == 0u) { rv = seen[0]; }
+    }
     textureStore(out_rv, id, rv);
     textureStore(out_r, id, r);
 }

@@ -11,54 +11,6 @@
 @group(0) @binding(5) var<storage, read> materials: array<Material>;
 @group(0) @binding(6) var<storage, read> voxels: array<u32>;
 
-// The passes over the voxels shade only the few that hold a surface (a wall crosses a block
-// of voxels in one layer of it): a workgroup of VOXEL_GROUP voxels first lists its occupied
-// ones in workgroup memory, so that they are shaded by its first invocations side by side in
-// whole warps, not by lanes scattered over every warp (a plane left a quarter to a half of a
-// 4×4×4 workgroup's lanes busy through all its cones).
-const VOXEL_GROUP: u32 = 256u;
-// Voxels whose real (1) or virtual (2) word a pass shades.
-const VOXEL_REAL: u32 = 1u;
-const VOXEL_VIRTUAL: u32 = 2u;
-var<workgroup> group_occupied: array<u32, VOXEL_GROUP>;
-var<workgroup> group_occupied_count: atomic<u32>;
-
-struct VoxelJob {
-    // This invocation's own voxel is in the volume and holds no surface the pass shades: the
-    // pass writes what an empty voxel holds there.
-    own_empty: bool,
-    // This invocation shades `voxel`.
-    busy: bool,
-    voxel: vec3u,
-}
-
-// Lists the voxels of the workgroup (invocation `local` at voxel `id`) whose words of the
-// kinds `kinds` are set, and hands them to its first invocations. Called from uniform control
-// flow: it holds the workgroup's barriers.
-fn voxel_job(id: vec3u, local: u32, kinds: u32) -> VoxelJob {
-    if (local == 0u) { atomicStore(&group_occupied_count, 0u); }
-    workgroupBarrier();
-    var job: VoxelJob;
-    if (all(id < vec3u(params.info.x))) {
-        let index = voxel_index(id);
-        let real = (kinds & VOXEL_REAL) != 0u && voxels[index * 2u] != 0u;
-        let virt = (kinds & VOXEL_VIRTUAL) != 0u && voxels[index * 2u + 1u] != 0u;
-        if (real || virt) {
-            group_occupied[atomicAdd(&group_occupied_count, 1u)] = index;
-        } else {
-            job.own_empty = true;
-        }
-    }
-    workgroupBarrier();
-    if (local < atomicLoad(&group_occupied_count)) {
-        let index = group_occupied[local];
-        let res = params.info.x;
-        job.busy = true;
-        job.voxel = vec3u(index % res, (index / res) % res, index / (res * res));
-    }
-    return job;
-}
-
 struct VoxelPoint {
     position: vec3f,
     normal: vec3f,
