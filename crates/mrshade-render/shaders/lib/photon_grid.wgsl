@@ -1,21 +1,23 @@
 // The landed photons in world space (reflections spec §2.17.4: caustics are seen in
 // reflections and refractions too), for the surfaces that reflected and refracted rays reach
-// but the camera does not see, where the screen-space caustic buffer has no texel. Level L's
-// cells are GRID_CELL_FACTOR · splat_min · 2^L wide, and a photon joins the smallest level
-// whose cells are at least as wide as its quad (2√2 h, diagonal included), so a point's
-// photons lie in the 2×2×2 cells of each level nearest to it: a *block*, named by its lowest
-// cell. The photon pass lists each landed photon in the eight blocks that hold its cell, in
-// contiguous ranges (a counting sort: cs_size counts per block, cs_grid_ranges hands out the
-// ranges, cs_grid_scatter fills them), so that a lookup reads one block per level and walks
-// one range whose reads do not wait on each other (a linked list per cell, walked over eight
-// cells a level, made the resolve 0.68 ms of a 4.1 ms frame at 1080p).
+// but the camera does not see, where the screen-space caustic buffer has no texel. A photon
+// joins the level whose quads are at most GRID_LEVEL_STEP (√2) times its own (level L holds
+// half-sizes up to splat_min · √2^L), and is listed in every cell of that level that the box
+// around its quad (its footprint, with half a quad of slack off the plane) touches; level
+// L's cells are as wide as its largest quads. A lookup then reads one cell per level: the
+// photons listed there are those whose footprint reaches it, some four times those whose
+// quad covers the point. The lists are contiguous ranges (a counting sort: cs_size counts
+// per cell, cs_grid_ranges hands out the ranges, cs_grid_scatter fills them), whose reads do
+// not wait on each other. (Linked lists per cell of 2√2 times the largest half-size, walked
+// over the 2×2×2 cells nearest to the point on every level of powers of two, read eight to
+// thirty times the covering photons: the resolve took 0.68 ms of a 4.05 ms frame at 1080p.)
 //
 // The grid's buffer: GRID_HEADER words (the levels that hold photons as bits, splat_min and
-// the depth epsilon as bits, the box the photons' quads span as order keys, the entries
-// handed out), then each block head's count, then its range's end (its start until the
-// scatter). Blocks of different keys may share a head: readers check each photon's own cell.
-// The entries are indices of the punctual lights' photon G-buffer, where the photons' copies
-// (`GridPhoton`) live.
+// the depth epsilon as bits, the box the photons' footprints span as order keys, the entries
+// handed out), then each head's count, then its range's end (its start until the scatter).
+// Cells of different keys may share a head (a photon is listed once per head): readers check
+// each photon's level, and its quad decides the rest. The entries are indices of the punctual
+// lights' photon G-buffer, where the photons' copies (`GridPhoton`) live.
 
 struct GridPhoton {
     // where it landed; w: its quad half-size (m)
@@ -33,30 +35,34 @@ const GRID_EPSILON_WORD: u32 = 2u;
 // The box's lower corner (x, y, z; order keys complemented) and upper corner (order keys).
 const GRID_BOX_MIN_WORD: u32 = 4u;
 const GRID_BOX_MAX_WORD: u32 = 8u;
-// Entries handed out to the blocks' ranges so far (cs_grid_ranges).
+// Entries handed out to the cells' ranges so far (cs_grid_ranges).
 const GRID_TOTAL_WORD: u32 = 11u;
-// Cell width at level 0 over splat_min: 2√2, a quad's diagonal at the smallest half-size.
-const GRID_CELL_FACTOR: f32 = 2.8284271;
-// Levels at most (their cells span splat_min to 2^15 times it).
-const GRID_LEVELS: u32 = 16u;
+// Ratio of the largest half-sizes of consecutive levels.
+const GRID_LEVEL_STEP: f32 = 1.4142136;
+// Levels at most (their largest half-sizes span splat_min to √2^31 times it).
+const GRID_LEVELS: u32 = 32u;
+// Most cells a footprint is listed in along an axis: it spans at most 2√3 of its level's
+// largest half-sizes, its cells are two of them wide.
+const GRID_CELLS_PER_AXIS: i32 = 3;
 
 fn grid_level(half_size: f32, splat_min: f32) -> u32 {
-    let level = ceil(log2(max(half_size / splat_min, 1.0)) - 1e-4);
+    let level = ceil(2.0 * log2(max(half_size / splat_min, 1.0)) - 1e-4);
     return min(u32(max(level, 0.0)), GRID_LEVELS - 1u);
 }
 
+// Cell width of level `level`: its largest quads' (2 · splat_min · √2^L).
 fn grid_cell_size(level: u32, splat_min: f32) -> f32 {
-    return GRID_CELL_FACTOR * splat_min * f32(1u << level);
+    return 2.0 * splat_min * pow(GRID_LEVEL_STEP, f32(level));
 }
 
-// Block heads of a grid buffer of `words` words (a count and a range end each).
+// Heads of a grid buffer of `words` words (a count and a range end each).
 fn grid_heads(words: u32) -> u32 {
     return (words - GRID_HEADER) / 2u;
 }
 
-// The head (0 … heads − 1) of the block `block` of level `level`.
-fn grid_head(level: u32, block: vec3i, heads: u32) -> u32 {
-    let c = bitcast<vec3u>(block);
+// The head (0 … heads − 1) of the cell `cell` of level `level`.
+fn grid_head(level: u32, cell: vec3i, heads: u32) -> u32 {
+    let c = bitcast<vec3u>(cell);
     return hash_u32(hash_u32(hash_u32(c.x ^ (level * 0x9e3779b9u)) ^ c.y) ^ c.z) % heads;
 }
 
@@ -69,24 +75,46 @@ fn grid_end_word(head: u32, heads: u32) -> u32 {
     return GRID_HEADER + heads + head;
 }
 
-// The heads of the eight blocks of level `level` that hold cell `cell`, each once (a head
-// that two of them share: GRID_NO_HEAD the second time).
-const GRID_NO_HEAD: u32 = 0xffffffffu;
-
-fn grid_block_heads(cell: vec3i, level: u32, heads: u32) -> array<u32, 8> {
-    var out: array<u32, 8>;
-    for (var k = 0u; k < 8u; k++) {
-        let head = grid_head(level, cell - vec3i(vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u)), heads);
-        var seen = false;
-        for (var j = 0u; j < k; j++) { seen = seen || out[j] == head; }
-        out[k] = select(head, GRID_NO_HEAD, seen);
-    }
-    return out;
+// The cell of level `level` that holds point `x`.
+fn grid_cell(x: vec3f, level: u32, splat_min: f32) -> vec3i {
+    return vec3i(floor(x / grid_cell_size(level, splat_min)));
 }
 
-// The block of level `level` a lookup at `x` reads: the 2×2×2 cells nearest to it.
-fn grid_block(x: vec3f, level: u32, splat_min: f32) -> vec3i {
-    return vec3i(floor(x / grid_cell_size(level, splat_min) - 0.5));
+// Half-extent along the axes of the footprint of a quad of half-size `h` on a surface of
+// normal `n`: the quad's box (its tangent frame's, as the splat and the lookup place it) and
+// half a quad off the plane, for a lookup's point that the trace put beside where the
+// photon's march did.
+fn grid_reach(n: vec3f, h: f32) -> vec3f {
+    let tb = tangent_frame(n);
+    return h * (abs(tb[0]) + abs(tb[1]) + 0.5 * abs(n));
+}
+
+// The cells of a photon's footprint (at `p`, half-extent `reach`, level `level`): the lowest
+// and the count along each axis (at most GRID_CELLS_PER_AXIS).
+struct GridCells {
+    lo: vec3i,
+    count: vec3i,
+}
+
+fn grid_cells(p: vec3f, reach: vec3f, level: u32, splat_min: f32) -> GridCells {
+    let lo = grid_cell(p - reach, level, splat_min);
+    let hi = grid_cell(p + reach, level, splat_min);
+    return GridCells(lo, min(hi - lo + 1, vec3i(GRID_CELLS_PER_AXIS)));
+}
+
+// The `k`-th cell of `c` (x fastest).
+fn grid_cells_at(c: GridCells, k: i32) -> vec3i {
+    return c.lo + vec3i(k % c.count.x, (k / c.count.x) % c.count.y, k / (c.count.x * c.count.y));
+}
+
+// Whether the `k`-th cell of `c` is the first of them with its head (a photon is listed once
+// per head).
+fn grid_first_of_head(c: GridCells, k: i32, level: u32, heads: u32) -> bool {
+    let head = grid_head(level, grid_cells_at(c, k), heads);
+    for (var j = 0; j < k; j++) {
+        if (grid_head(level, grid_cells_at(c, j), heads) == head) { return false; }
+    }
+    return true;
 }
 
 // A u32 that orders as the float `f` does (negative floats' bits complemented, positive
@@ -98,11 +126,6 @@ fn order_key(f: f32) -> u32 {
 
 fn from_order_key(k: u32) -> f32 {
     return bitcast<f32>(select(~k, k & 0x7fffffffu, (k & 0x80000000u) != 0u));
-}
-
-// The cell of level `level` that holds point `x`.
-fn grid_cell(x: vec3f, level: u32, splat_min: f32) -> vec3i {
-    return vec3i(floor(x / grid_cell_size(level, splat_min)));
 }
 
 // The irradiance (rgb) that photon `p`'s quad gives point `x` with normal `n`, and 1 in a

@@ -146,9 +146,8 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
 const GRID_VISITS: u32 = 4096u;
 
 // The caustic irradiance at `x` (normal `n`) of the L_rv and of the L_r photons, from the
-// photons' world-space grid: the quads listed in the block of the 2×2×2 cells nearest to `x`
-// on every level that holds photons, each photon counted in its own block only (blocks may
-// share a head).
+// photons' world-space grid: the quads listed in the cell of `x` on every level that holds
+// photons (photons of another level that share the cell's head are skipped).
 fn grid_caustics(x: vec3f, n: vec3f) -> Radiance {
     var rv = vec4f(0.0);
     var r = vec4f(0.0);
@@ -166,21 +165,19 @@ fn grid_caustics(x: vec3f, n: vec3f) -> Radiance {
         from_order_key(grid[GRID_BOX_MAX_WORD + 1u]),
         from_order_key(grid[GRID_BOX_MAX_WORD + 2u]),
     );
-    if (any(x < lo - tolerance) || any(x > hi + tolerance)) { return Radiance(vec3f(0.0), vec3f(0.0)); }
+    if (any(x < lo) || any(x > hi)) { return Radiance(vec3f(0.0), vec3f(0.0)); }
     let splat_min = bitcast<f32>(grid[GRID_SPLAT_MIN_WORD]);
     let heads = grid_heads(arrayLength(&grid));
     let entries = arrayLength(&grid_entries);
     var visits = 0u;
     for (var level = 0u; level < GRID_LEVELS; level++) {
         if ((levels & (1u << level)) == 0u) { continue; }
-        let block = grid_block(x, level, splat_min);
-        let head = grid_head(level, block, heads);
+        let head = grid_head(level, grid_cell(x, level, splat_min), heads);
         let end = min(grid[grid_end_word(head, heads)], entries);
         let count = min(grid[grid_count_word(head)], GRID_VISITS - visits);
         for (var i = end - min(count, end); i < end; i++) {
             let p = grid_photons[grid_entries[i]];
-            let own = grid_cell(p.position.xyz, level, splat_min) - block;
-            if (grid_level(p.position.w, splat_min) != level || any(own < vec3i(0)) || any(own > vec3i(1))) { continue; }
+            if (grid_level(p.position.w, splat_min) != level) { continue; }
             let e = grid_photon_irradiance(p, x, n, tolerance);
             if (p.normal.w == 0.0) { rv += e; } else { r += e; }
         }

@@ -23,8 +23,8 @@
 // The landed photons of each caustic level (level × photon_slots() + i), and their draws.
 @group(2) @binding(1) var<storage, read_write> splat_list: array<u32>;
 @group(2) @binding(2) var<storage, read_write> splat_draws: array<SplatDraw, 2>;
-// The world-space grid of the landed photons (shaders/lib/photon_grid.wgsl): header, block
-// counts and range ends; the photons it lists; its blocks' ranges of photon indices.
+// The world-space grid of the landed photons (shaders/lib/photon_grid.wgsl): header, heads'
+// counts and range ends; the photons it lists; its cells' ranges of photon indices.
 @group(2) @binding(3) var<storage, read_write> grid: array<atomic<u32>>;
 @group(2) @binding(4) var<storage, read_write> grid_photons: array<GridPhoton>;
 @group(2) @binding(5) var<storage, read_write> grid_entries: array<u32>;
@@ -208,9 +208,9 @@ fn nearer(a: f32, b: f32) -> f32 {
 var<workgroup> group_levels: atomic<u32>;
 var<workgroup> group_box: array<atomic<u32>, 6>;
 
-// Counts the landed photon `index` (its half-size sized) in the eight blocks of the
-// world-space grid that hold its cell, and copies it there, as a photon of L_r (`of_r` 1) or
-// of L_rv (0); cs_grid_scatter lists it once the blocks' ranges are known.
+// Counts the landed photon `index` (its half-size sized) in the cells of the world-space
+// grid that its footprint touches, and copies it there, as a photon of L_r (`of_r` 1) or of
+// L_rv (0); cs_grid_scatter lists it once the cells' ranges are known.
 fn grid_count(index: u32, of_r: f32) {
     let photon = photons[index];
     let splat_min = caustics.splat.x;
@@ -218,14 +218,17 @@ fn grid_count(index: u32, of_r: f32) {
     let h = photon.normal.w;
     let level = grid_level(h, splat_min);
     atomicOr(&group_levels, 1u << level);
-    let reach = vec3f(GRID_CELL_FACTOR * 0.5 * h);
+    let reach = grid_reach(photon.normal.xyz, h);
     for (var axis = 0u; axis < 3u; axis++) {
         atomicMax(&group_box[axis], ~order_key(p[axis] - reach[axis]));
         atomicMax(&group_box[3u + axis], order_key(p[axis] + reach[axis]));
     }
-    let blocks = grid_block_heads(grid_cell(p, level, splat_min), level, grid_heads(arrayLength(&grid)));
-    for (var k = 0u; k < 8u; k++) {
-        if (blocks[k] != GRID_NO_HEAD) { atomicAdd(&grid[grid_count_word(blocks[k])], 1u); }
+    let heads = grid_heads(arrayLength(&grid));
+    let cells = grid_cells(p, reach, level, splat_min);
+    for (var k = 0; k < cells.count.x * cells.count.y * cells.count.z; k++) {
+        if (grid_first_of_head(cells, k, level, heads)) {
+            atomicAdd(&grid[grid_count_word(grid_head(level, grid_cells_at(cells, k), heads))], 1u);
+        }
     }
     grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, of_r), vec4f(photon.power.rgb, 0.0));
 }
@@ -296,9 +299,9 @@ fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
     }
 }
 
-// Each block's range of the grid's entries (after cs_size counted them), one thread per
-// block head: the workgroup's blocks take one share of the entries, handed out by a single
-// atomic (the ranges' order does not matter). A range's start goes where its end will be.
+// Each head's range of the grid's entries (after cs_size counted them), one thread per head:
+// the workgroup's heads take one share of the entries, handed out by a single atomic (the
+// ranges' order does not matter). A range's start goes where its end will be.
 var<workgroup> group_entries: atomic<u32>;
 var<workgroup> group_start: u32;
 
@@ -321,7 +324,7 @@ fn cs_grid_ranges(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
     if (count != 0u) { atomicStore(&grid[grid_end_word(head, heads)], group_start + offset); }
 }
 
-// Lists each landed photon of the punctual lights in the ranges of the blocks cs_size
+// Lists each landed photon of the punctual lights in the ranges of the cells cs_size
 // counted it in (their ends then lie past their last entries).
 @compute @workgroup_size(8, 8)
 fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
@@ -333,11 +336,13 @@ fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
         let index = photon_index(id.z, kind, id.xy);
         let photon = photons[index];
         if (photon.position.w == 0.0) { continue; }
-        let level = grid_level(photon.normal.w, splat_min);
-        let blocks = grid_block_heads(grid_cell(photon.position.xyz, level, splat_min), level, heads);
-        for (var k = 0u; k < 8u; k++) {
-            if (blocks[k] == GRID_NO_HEAD) { continue; }
-            let slot = atomicAdd(&grid[grid_end_word(blocks[k], heads)], 1u);
+        let h = photon.normal.w;
+        let level = grid_level(h, splat_min);
+        let cells = grid_cells(photon.position.xyz, grid_reach(photon.normal.xyz, h), level, splat_min);
+        for (var k = 0; k < cells.count.x * cells.count.y * cells.count.z; k++) {
+            if (!grid_first_of_head(cells, k, level, heads)) { continue; }
+            let head = grid_head(level, grid_cells_at(cells, k), heads);
+            let slot = atomicAdd(&grid[grid_end_word(head, heads)], 1u);
             if (slot < arrayLength(&grid_entries)) { grid_entries[slot] = index; }
         }
     }

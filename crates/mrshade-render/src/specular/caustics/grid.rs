@@ -12,30 +12,30 @@ pub const GRID_SPLAT_MIN_WORD: u64 = 1;
 /// Header word of the depth epsilon, written once (`GRID_EPSILON_WORD`).
 pub const GRID_EPSILON_WORD: u64 = 2;
 /// First header word of the photons' box (`GRID_BOX_MIN_WORD`), from which the frame's clear
-/// runs through the block counts.
+/// runs through the heads' counts.
 pub const GRID_BOX_MIN_WORD: u64 = 4;
 /// Header word of the entries handed out (`GRID_TOTAL_WORD`), cleared with the box.
 pub const GRID_TOTAL_WORD: u64 = 11;
 /// Bytes of one listed photon (`GridPhoton` in photon_grid.wgsl).
 pub const GRID_PHOTON_BYTES: u64 = 48;
-/// Block heads of the grid: 2^18 (a count and a range end each, 2 MiB), some ten times the
-/// landed photons of a light at the default photon resolution, so that few blocks share one.
+/// Heads of the grid: 2^18 (a count and a range end each, 2 MiB), some ten times the landed
+/// photons of a light at the default photon resolution, so that few cells share one.
 pub const GRID_HEADS: u64 = 1 << 18;
-/// Blocks a photon is listed in: the 2×2×2 that hold its cell.
-pub const GRID_BLOCKS_PER_PHOTON: u64 = 8;
-/// Workgroup size of `cs_grid_ranges` (one thread per block head).
+/// Most cells a photon is listed in: three along each axis (`GRID_CELLS_PER_AXIS`).
+pub const GRID_CELLS_PER_PHOTON: u64 = 27;
+/// Workgroup size of `cs_grid_ranges` (one thread per head).
 pub const GRID_RANGES_WORKGROUP: u64 = 256;
 
 /// The grid's buffers.
 pub struct PhotonGrid {
     /// Header (levels used as bits, splat_min, depth epsilon, the photons' box, the entries
-    /// handed out), block counts and range ends.
+    /// handed out), the heads' counts and range ends.
     pub heads: wgpu::Buffer,
     /// The listed photons, at their indices in the punctual lights' photon G-buffer.
     pub photons: wgpu::Buffer,
-    /// The blocks' ranges of photon indices, eight entries per photon slot.
+    /// The cells' ranges of photon indices, up to 27 entries per photon slot.
     pub entries: wgpu::Buffer,
-    /// Block heads (a power of two; 1 in an empty grid).
+    /// Heads (a power of two; 1 in an empty grid).
     pub head_count: u64,
 }
 
@@ -63,7 +63,7 @@ impl PhotonGrid {
             }),
             entries: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("specular/photon_grid/entries"),
-                size: capacity.max(1) * GRID_BLOCKS_PER_PHOTON * 4,
+                size: capacity.max(1) * GRID_CELLS_PER_PHOTON * 4,
                 usage,
                 mapped_at_creation: false,
             }),
@@ -72,7 +72,7 @@ impl PhotonGrid {
     }
 
     /// Empties the grid for this frame's photons (before the photon pass's `cs_size`): its
-    /// levels (word 0), box, entries handed out and block counts; splat_min and the depth
+    /// levels (word 0), box, entries handed out and the heads' counts; splat_min and the depth
     /// epsilon stay, and the range ends are written before they are read.
     pub fn clear(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.clear_buffer(&self.heads, 0, Some(4));
