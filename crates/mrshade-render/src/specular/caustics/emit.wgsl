@@ -28,9 +28,6 @@
 @group(2) @binding(3) var<storage, read_write> grid: array<atomic<u32>>;
 @group(2) @binding(4) var<storage, read_write> grid_photons: array<GridPhoton>;
 @group(2) @binding(5) var<storage, read_write> grid_entries: array<u32>;
-// Where the punctual lights' group keeps its draws for the next frame's caustic VPLs
-// (LightPhotons::landed; the probe's group binds a spare).
-@group(2) @binding(6) var<storage, read_write> landed_draws: array<u32, 8>;
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -348,17 +345,5 @@ fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
             let slot = atomicAdd(&grid[grid_end_word(head, heads)], 1u);
             if (slot < arrayLength(&grid_entries)) { grid_entries[slot] = index; }
         }
-    }
-}
-
-// Keeps the splat draws (after cs_size counted them) for the next frame's caustic VPLs, as
-// a dispatch of the rays' pass rather than a copy between passes.
-@compute @workgroup_size(1)
-fn cs_keep_landed() {
-    for (var level = 0u; level < 2u; level++) {
-        landed_draws[level * 4u] = atomicLoad(&splat_draws[level].vertex_count);
-        landed_draws[level * 4u + 1u] = splat_draws[level].instance_count;
-        landed_draws[level * 4u + 2u] = splat_draws[level].first_vertex;
-        landed_draws[level * 4u + 3u] = splat_draws[level].first_instance;
     }
 }

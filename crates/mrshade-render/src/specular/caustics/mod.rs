@@ -82,6 +82,8 @@ struct PhotonGroup {
     photons: wgpu::Buffer,
     /// The indirect draw of each level (`SplatDraw` in photons.wgsl).
     draws: wgpu::Buffer,
+    /// Where the lights' group copies its draws for the next frame's caustic VPLs.
+    landed: Option<wgpu::Buffer>,
     /// Per level.
     splat_groups: [wgpu::BindGroup; 2],
 }
@@ -201,7 +203,7 @@ impl Caustics {
         let emit_output = bind::layout(
             device,
             "specular/photons_output",
-            &(0..7).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
+            &(0..6).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
         );
         let emit_probe = bind::layout(device, "specular/photons_probe", &GpuProbe::layout_entries(cs));
         let [impostors, owners, impostor_texels] = inputs.impostors;
@@ -231,13 +233,6 @@ impl Caustics {
             "specular/photon_size",
             PHOTONS_SHADER,
             "cs_size",
-            &emit_layouts,
-        );
-        let keep_landed = mrshade_gpu::shader::compute_pipeline_entry(
-            device,
-            "specular/photons_keep_landed",
-            PHOTONS_SHADER,
-            "cs_keep_landed",
             &emit_layouts,
         );
         let [grid_ranges, grid_scatter] =
@@ -308,15 +303,6 @@ impl Caustics {
             // The lights' photons live in `LightPhotons` (dir reads them too).
             let shared = inputs.light_photons.filter(|_| from_probe == 0);
             let own_grid = if from_probe == 0 { &grid } else { &no_grid };
-            let spare_landed = || {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(&format!("{label}/no_landed")),
-                    size: SPLAT_DRAWS_BYTES,
-                    usage: wgpu::BufferUsages::STORAGE,
-                    mapped_at_creation: false,
-                })
-            };
-            let landed = shared.map_or_else(spare_landed, |l| l.landed.clone());
             let (photons, list) = match shared {
                 Some(lights) => (lights.buffer.clone(), lights.list.clone()),
                 None => photon_buffers(device, label, slots),
@@ -343,7 +329,7 @@ impl Caustics {
                     device,
                     &format!("{label}/output"),
                     &emit_output,
-                    &[&photons, &list, &draws, &own_grid.heads, &own_grid.photons, &own_grid.entries, &landed]
+                    &[&photons, &list, &draws, &own_grid.heads, &own_grid.photons, &own_grid.entries]
                         .map(|b| b.as_entire_binding()),
                 ),
                 probe_group.clone(),
@@ -354,13 +340,6 @@ impl Caustics {
             {
                 let workgroups = [side, side, sources * kinds];
                 dispatches.push(Dispatch { pipeline: pipeline.clone(), groups: emit_groups.clone(), workgroups });
-            }
-            if shared.is_some() {
-                size_dispatches.push(Dispatch {
-                    pipeline: keep_landed.clone(),
-                    groups: emit_groups.clone(),
-                    workgroups: [1, 1, 1],
-                });
             }
             if from_probe == 0 {
                 // The grid's counting sort after cs_size counted: the cells' ranges, then
@@ -391,7 +370,16 @@ impl Caustics {
                     ],
                 )
             });
-            groups.push(PhotonGroup { sources, resolution, from_probe, params, photons, draws, splat_groups });
+            groups.push(PhotonGroup {
+                sources,
+                resolution,
+                from_probe,
+                landed: shared.map(|l| l.landed.clone()),
+                params,
+                photons,
+                draws,
+                splat_groups,
+            });
         }
         Some(Self { settings, casters, groups, emit: emit_dispatches, size: size_dispatches, splat, grid })
     }
@@ -432,6 +420,11 @@ impl Caustics {
     /// Splats the photons traced by [`Caustics::photon_dispatches`] into both levels of
     /// `buffer`.
     pub fn record_splat(&self, rec: &mut Recorder, buffer: &CausticBuffer) {
+        for g in &self.groups {
+            if let Some(landed) = &g.landed {
+                rec.encoder.copy_buffer_to_buffer(&g.draws, 0, landed, 0, SPLAT_DRAWS_BYTES);
+            }
+        }
         // `CausticBuffer::clear` emptied the targets beside the photon tracing.
         fn load(t: &Target) -> Option<wgpu::RenderPassColorAttachment<'_>> {
             Some(wgpu::RenderPassColorAttachment {
