@@ -142,8 +142,11 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
     return light;
 }
 
-// Most photons one grid lookup visits (a bound on its cost where many photons crowd a cell).
-const GRID_VISITS: u32 = 4096u;
+// Most entries one lookup visits in a cell: a cell crowded with more (a caustic's focus, its
+// quads clamped to splat_min, holds hundreds) is read at a stratified subset, every
+// stride-th entry from a random start, each weighted by the stride (an unbiased estimate of
+// the sum that the frames average), so that a lookup's cost does not follow the photon count.
+const GRID_CELL_VISITS: u32 = 32u;
 
 // The caustic irradiance at `x` (normal `n`) of the L_rv and of the L_r photons, from the
 // photons' world-space grid: the quads listed in the cell of `x` on every level that holds
@@ -169,20 +172,20 @@ fn grid_caustics(x: vec3f, n: vec3f) -> Radiance {
     let splat_min = bitcast<f32>(grid[GRID_SPLAT_MIN_WORD]);
     let heads = grid_heads(arrayLength(&grid));
     let entries = arrayLength(&grid_entries);
-    var visits = 0u;
+    let seed = hash_u32(bitcast<u32>(x.x) ^ hash_u32(bitcast<u32>(x.y) ^ hash_u32(bitcast<u32>(x.z) ^ u32(frame.exposure_env.w))));
     for (var level = 0u; level < GRID_LEVELS; level++) {
         if ((levels & (1u << level)) == 0u) { continue; }
         let head = grid_head(level, grid_cell(x, level, splat_min), heads);
         let end = min(grid[grid_end_word(head, heads)], entries);
-        let count = min(grid[grid_count_word(head)], GRID_VISITS - visits);
-        for (var i = end - min(count, end); i < end; i++) {
+        let count = min(grid[grid_count_word(head)], end);
+        let stride = max((count + GRID_CELL_VISITS - 1u) / GRID_CELL_VISITS, 1u);
+        let weight = f32(stride);
+        for (var i = end - count + hash_u32(seed ^ level) % stride; i < end; i += stride) {
             let p = grid_photons[grid_entries[i]];
             if (grid_level(p.position.w, splat_min) != level) { continue; }
-            let e = grid_photon_irradiance(p, x, n, tolerance);
+            let e = weight * grid_photon_irradiance(p, x, n, tolerance);
             if (p.normal.w == 0.0) { rv += e; } else { r += e; }
         }
-        visits += count;
-        if (visits >= GRID_VISITS) { break; }
     }
     return Radiance(caustic_irradiance(rv), caustic_irradiance(r));
 }
