@@ -317,6 +317,14 @@ fn caustic_structs_match() {
     let per_axis = (GRID_CELLS_PER_PHOTON as f64).cbrt().round() as u64;
     assert_eq!(per_axis.pow(3), GRID_CELLS_PER_PHOTON);
     assert!(PHOTONS_SHADER.contains(&format!("const GRID_CELLS_PER_AXIS: i32 = {per_axis};")));
+    // The largest quads the settings allow fit the grid's levels, √2 apart.
+    let levels: i32 = PHOTONS_SHADER
+        .split("const GRID_LEVELS: u32 = ")
+        .nth(1)
+        .and_then(|s| s.split('u').next())
+        .and_then(|s| s.parse().ok())
+        .expect("GRID_LEVELS");
+    assert!(mrshade_core::settings::MAX_SPLAT_RATIO <= 2f32.sqrt().powi(levels - 1));
 }
 
 #[test]

@@ -19,6 +19,10 @@ pub enum Concentration {
     Thesis,
 }
 
+/// Largest ratio of `splat_far_max` to `splat_min`: the photons' world-space grid has 32
+/// levels of quad size √2 apart (√2^31 ≈ 46341).
+pub const MAX_SPLAT_RATIO: f32 = 32768.0;
+
 /// Settings of the caustics (part of the specular stage).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -119,6 +123,17 @@ impl CausticsSettings {
             "caustics.splat_far_max",
             format!("must be a number of metres in [splat_max, 10), got {}", self.splat_far_max),
         )?;
+        // The photons' world-space grid has a level per √2 of quad size, 32 of them
+        // (shaders/lib/photon_grid.wgsl): larger quads would spill out of their cells.
+        check(
+            self.splat_far_max <= MAX_SPLAT_RATIO * self.splat_min,
+            "caustics.splat_far_max",
+            format!(
+                "must be at most {MAX_SPLAT_RATIO} × splat_min ({} m), got {}",
+                MAX_SPLAT_RATIO * self.splat_min,
+                self.splat_far_max
+            ),
+        )?;
         check(
             self.depth_epsilon.is_finite() && self.depth_epsilon > 0.0 && self.depth_epsilon < 1.0,
             "caustics.depth_epsilon",
@@ -180,6 +195,7 @@ mod tests {
             CausticsSettings { splat_min: 0.0, ..Default::default() },
             CausticsSettings { splat_max: 0.001, ..Default::default() },
             CausticsSettings { splat_far_max: 0.01, ..Default::default() },
+            CausticsSettings { splat_min: 1e-7, splat_max: 1e-6, ..Default::default() },
             CausticsSettings { depth_epsilon: f32::NAN, ..Default::default() },
             CausticsSettings { thesis_photons: 0, ..Default::default() },
             CausticsSettings { thesis_base: 1.0, ..Default::default() },
@@ -191,6 +207,7 @@ mod tests {
             "photon_resolution",
             "splat_min",
             "splat_max",
+            "splat_far_max",
             "splat_far_max",
             "depth_epsilon",
             "thesis_photons",

@@ -15,7 +15,7 @@ mod reference;
 mod shadows;
 mod specular;
 
-pub use caustics::{CausticsSettings, Concentration};
+pub use caustics::{CausticsSettings, Concentration, MAX_SPLAT_RATIO};
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
 pub use dlpv::{DlpvSettings, DlpvSplat};
