@@ -139,10 +139,12 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
-    // The photon G-buffers of every light in one buffer (specular/caustics): fewer photons.
+    // The photon G-buffers of every light in one buffer (specular/caustics), and the photon
+    // grid's entries, the largest of its buffers per photon slot: fewer photons.
     let lights = scene.lights.len().max(1) as u64;
-    let photon_bytes = crate::specular::caustics::PHOTON_BYTES * crate::specular::caustics::PHOTON_KINDS;
-    let photons_fit = |res: u64| lights * res * res * photon_bytes <= max_binding;
+    use crate::specular::caustics::{GRID_ENTRY_BYTES_PER_SLOT, PHOTON_BYTES, PHOTON_KINDS};
+    let light_photon_bytes = PHOTON_BYTES.max(GRID_ENTRY_BYTES_PER_SLOT) * PHOTON_KINDS;
+    let photons_fit = |res: u64| lights * res * res * light_photon_bytes <= max_binding;
     if !fit.shrink("caustics.photon_resolution", &mut settings.caustics.photon_resolution, &photons_fit, 8) {
         bail!(
             "the scene's {} lights need more photon G-buffers than one GPU buffer of this device holds ({} MiB) \
@@ -151,9 +153,9 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
             max_binding >> 20
         );
     }
-    // The probe's directions, in a buffer of their own.
+    // The probe's directions, in a buffer of their own (not in the grid).
     let directions = settings.caustics.environment_directions as u64;
-    let probe_photons_fit = |res: u64| directions * res * res * photon_bytes <= max_binding;
+    let probe_photons_fit = |res: u64| directions * res * res * PHOTON_BYTES * PHOTON_KINDS <= max_binding;
     let resolution = &mut settings.caustics.environment_resolution;
     if !fit.shrink("caustics.environment_resolution", resolution, &probe_photons_fit, 4) {
         bail!(
@@ -298,7 +300,9 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
     if traced && settings.caustics.enabled {
         let c = &settings.caustics;
         let texels = |sources: u64, res: u32| sources * res as u64 * res as u64;
-        use crate::specular::caustics::{PHOTON_BYTES, PHOTON_KINDS, SPLAT_LIST_BYTES};
+        use crate::specular::caustics::{
+            GRID_BYTES_PER_SLOT, GRID_HEADER_WORDS, GRID_HEADS, PHOTON_BYTES, PHOTON_KINDS, SPLAT_LIST_BYTES,
+        };
         let photon_bytes = (PHOTON_BYTES + SPLAT_LIST_BYTES) * PHOTON_KINDS;
         let lights = texels(scene.lights.len() as u64, c.photon_resolution);
         let directions = texels(c.environment_directions as u64, c.environment_resolution);
@@ -306,6 +310,12 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
             "caustic photons (lights × photon_resolution² + environment_directions × environment_resolution²)",
             (lights + directions) * photon_bytes,
         ));
+        if lights > 0 {
+            items.push((
+                "the lights' photons' world-space grid (heads, listed photons, entries)",
+                (GRID_HEADER_WORDS + 2 * GRID_HEADS) * 4 + lights * PHOTON_KINDS * GRID_BYTES_PER_SLOT,
+            ));
+        }
     }
     items.extend((crate::methods::entry(settings.method).estimate)(settings, internal, layers));
     Estimate(items)
@@ -392,6 +402,15 @@ mod tests {
         let tiny = DeviceLimits { max_binding: 1 << 20, ..SMALL_DEVICE };
         let err = fit_to_device(&small, tiny).unwrap_err().to_string();
         assert!(err.contains("caustics.environment_directions = 1024"), "{err}");
+    }
+
+    #[test]
+    fn the_lights_photons_fit_with_their_grid() {
+        // 20 lights × 128² photons × 4 kinds: 60 MiB of photon G-buffer fit 128 MiB, but the
+        // grid's entries (27 × 4 B a photon, 135 MiB) do not; 64² (34 MiB) do.
+        let (fitted, _, warnings) = fit_to_device(&session(20, 640), SMALL_DEVICE).unwrap();
+        assert_eq!(fitted.caustics.photon_resolution, 64);
+        assert!(warnings.iter().any(|w| w.contains("caustics.photon_resolution = 128")), "{warnings:?}");
     }
 
     #[test]

@@ -41,8 +41,8 @@ const GRID_TOTAL_WORD: u32 = 11u;
 const GRID_LEVEL_STEP: f32 = 1.4142136;
 // Levels at most (their largest half-sizes span splat_min to √2^31 times it).
 const GRID_LEVELS: u32 = 32u;
-// Most cells a footprint is listed in along an axis: it spans at most 2√3 of its level's
-// largest half-sizes, its cells are two of them wide.
+// Most cells a footprint is listed in along an axis: it spans at most 3 of its level's
+// largest half-sizes (2 in the plane, the slack off it), its cells are two of them wide.
 const GRID_CELLS_PER_AXIS: i32 = 3;
 
 fn grid_level(half_size: f32, splat_min: f32) -> u32 {
@@ -86,8 +86,13 @@ fn grid_cell(x: vec3f, level: u32, splat_min: f32) -> vec3i {
 // photon's march did.
 fn grid_reach(n: vec3f, h: f32) -> vec3f {
     let tb = tangent_frame(n);
-    return h * (abs(tb[0]) + abs(tb[1]) + 0.5 * abs(n));
+    return h * (abs(tb[0]) + abs(tb[1]) + GRID_PLANE_SLACK * abs(n));
 }
+
+// How far off a photon's plane, in its quad's half-sizes, a lookup finds it (the footprint's
+// slack; the splat's depth tolerance, a fraction of the camera distance, is far wider than a
+// small quad's cells).
+const GRID_PLANE_SLACK: f32 = 0.5;
 
 // The cells of a photon's footprint (at `p`, half-extent `reach`, level `level`): the lowest
 // and the count along each axis (at most GRID_CELLS_PER_AXIS).
@@ -100,6 +105,22 @@ fn grid_cells(p: vec3f, reach: vec3f, level: u32, splat_min: f32) -> GridCells {
     let lo = grid_cell(p - reach, level, splat_min);
     let hi = grid_cell(p + reach, level, splat_min);
     return GridCells(lo, min(hi - lo + 1, vec3i(GRID_CELLS_PER_AXIS)));
+}
+
+// `c` and the photon's level in a vec4i (cs_size writes it, cs_grid_scatter reads it, so that
+// the two passes list a photon in the same cells whatever their float arithmetic rounds).
+fn grid_cells_pack(c: GridCells, level: u32) -> vec4i {
+    let counts = vec3u(c.count - 1);
+    return vec4i(c.lo, bitcast<i32>(level | (counts.x << 8u) | (counts.y << 10u) | (counts.z << 12u)));
+}
+
+fn grid_cells_unpack(v: vec4i) -> GridCells {
+    let w = bitcast<u32>(v.w);
+    return GridCells(v.xyz, vec3i(vec3u((w >> 8u) & 3u, (w >> 10u) & 3u, (w >> 12u) & 3u)) + 1);
+}
+
+fn grid_cells_level(v: vec4i) -> u32 {
+    return bitcast<u32>(v.w) & 0xffu;
 }
 
 // The `k`-th cell of `c` (x fastest).
@@ -133,8 +154,11 @@ fn from_order_key(k: u32) -> f32 {
 // quad, farther than `tolerance` off its plane, or facing another way (splat.wgsl's test).
 fn grid_photon_irradiance(p: GridPhoton, x: vec3f, n: vec3f, tolerance: f32) -> vec4f {
     let d = x - p.position.xyz;
-    if (abs(dot(d, p.normal.xyz)) > tolerance || dot(n, p.normal.xyz) < 0.5) { return vec4f(0.0); }
     let h = p.position.w;
+    // No farther than the footprint reaches, so that cell boundaries do not decide.
+    if (abs(dot(d, p.normal.xyz)) > min(tolerance, GRID_PLANE_SLACK * h) || dot(n, p.normal.xyz) < 0.5) {
+        return vec4f(0.0);
+    }
     let tb = tangent_frame(p.normal.xyz);
     let local = vec2f(dot(d, tb[0]), dot(d, tb[1])) / h;
     if (any(abs(local) >= vec2f(1.0))) { return vec4f(0.0); }

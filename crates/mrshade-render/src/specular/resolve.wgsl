@@ -145,7 +145,8 @@ fn shade_hit(triangle: u32, position: vec3f, dir: vec3f) -> Radiance {
 // Most entries one lookup visits in a cell: a cell crowded with more (a caustic's focus, its
 // quads clamped to splat_min, holds hundreds) is read at a stratified subset, every
 // stride-th entry from a random start, each weighted by the stride (an unbiased estimate of
-// the sum that the frames average), so that a lookup's cost does not follow the photon count.
+// the sum that the frames average; with `concentration = "thesis"`, whose k_c is a nonlinear
+// function of the count, nearly so), so that a lookup's cost does not follow the photon count.
 const GRID_CELL_VISITS: u32 = 32u;
 
 // The caustic irradiance at `x` (normal `n`) of the L_rv and of the L_r photons, from the

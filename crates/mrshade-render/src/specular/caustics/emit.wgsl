@@ -28,6 +28,8 @@
 @group(2) @binding(3) var<storage, read_write> grid: array<atomic<u32>>;
 @group(2) @binding(4) var<storage, read_write> grid_photons: array<GridPhoton>;
 @group(2) @binding(5) var<storage, read_write> grid_entries: array<u32>;
+// Per photon slot: the cells cs_size counted the photon in (grid_cells_pack).
+@group(2) @binding(6) var<storage, read_write> grid_photon_cells: array<vec4i>;
 
 @group(3) @binding(0) var env_radiance: texture_2d<f32>;
 @group(3) @binding(1) var env_irradiance: texture_2d<f32>;
@@ -203,7 +205,7 @@ fn nearer(a: f32, b: f32) -> f32 {
 }
 
 // What a workgroup's photons add to the grid's header: the levels they use (bits), and the
-// box their quads span (order keys: the lower corner's complemented, so that both corners
+// box their footprints span (order keys: the lower corner's complemented, so that both corners
 // grow by atomicMax from the cleared 0).
 var<workgroup> group_levels: atomic<u32>;
 var<workgroup> group_box: array<atomic<u32>, 6>;
@@ -231,6 +233,7 @@ fn grid_count(index: u32, of_r: f32) {
         }
     }
     grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, of_r), vec4f(photon.power.rgb, 0.0));
+    grid_photon_cells[index] = grid_cells_pack(cells, level);
 }
 
 // Adds the workgroup's levels and box to the grid's header, once per workgroup (local
@@ -331,14 +334,12 @@ fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
     let res = caustics.info.x;
     if (any(id.xy >= vec2u(res)) || id.z >= caustics.info.y) { return; }
     let heads = grid_heads(arrayLength(&grid));
-    let splat_min = caustics.splat.x;
     for (var kind = 0u; kind < PHOTON_KINDS; kind++) {
         let index = photon_index(id.z, kind, id.xy);
-        let photon = photons[index];
-        if (photon.position.w == 0.0) { continue; }
-        let h = photon.normal.w;
-        let level = grid_level(h, splat_min);
-        let cells = grid_cells(photon.position.xyz, grid_reach(photon.normal.xyz, h), level, splat_min);
+        if (photons[index].position.w == 0.0) { continue; }
+        let packed = grid_photon_cells[index];
+        let level = grid_cells_level(packed);
+        let cells = grid_cells_unpack(packed);
         for (var k = 0; k < cells.count.x * cells.count.y * cells.count.z; k++) {
             if (!grid_first_of_head(cells, k, level, heads)) { continue; }
             let head = grid_head(level, grid_cells_at(cells, k), heads);

@@ -5,7 +5,7 @@
 use mrshade_core::settings::CausticsSettings;
 use wgpu::util::DeviceExt;
 
-/// Words of the grid buffer before the list heads (`GRID_HEADER` in photon_grid.wgsl).
+/// Words of the grid buffer before the heads' counts (`GRID_HEADER` in photon_grid.wgsl).
 pub const GRID_HEADER_WORDS: u64 = 12;
 /// Header word of `splat_min`, written once (`GRID_SPLAT_MIN_WORD` in photon_grid.wgsl).
 pub const GRID_SPLAT_MIN_WORD: u64 = 1;
@@ -18,11 +18,17 @@ pub const GRID_BOX_MIN_WORD: u64 = 4;
 pub const GRID_TOTAL_WORD: u64 = 11;
 /// Bytes of one listed photon (`GridPhoton` in photon_grid.wgsl).
 pub const GRID_PHOTON_BYTES: u64 = 48;
-/// Heads of the grid: 2^18 (a count and a range end each, 2 MiB), some ten times the landed
-/// photons of a light at the default photon resolution, so that few cells share one.
+/// Heads of the grid: 2^18 (a count and a range end each, 2 MiB), some three times the cells
+/// the landed photons of a light fill at the default photon resolution (a few each).
 pub const GRID_HEADS: u64 = 1 << 18;
 /// Most cells a photon is listed in: three along each axis (`GRID_CELLS_PER_AXIS`).
 pub const GRID_CELLS_PER_PHOTON: u64 = 27;
+/// Bytes per photon slot of the grid's buffers: the listed photon, its entries at most, the
+/// cells it was counted in (`GridCells` packed in a vec4i).
+pub const GRID_BYTES_PER_SLOT: u64 = GRID_PHOTON_BYTES + GRID_CELLS_PER_PHOTON * 4 + 16;
+/// The largest of the grid's buffers per photon slot (its entries), for the device's binding
+/// limit.
+pub const GRID_ENTRY_BYTES_PER_SLOT: u64 = GRID_CELLS_PER_PHOTON * 4;
 /// Workgroup size of `cs_grid_ranges` (one thread per head).
 pub const GRID_RANGES_WORKGROUP: u64 = 256;
 
@@ -35,6 +41,8 @@ pub struct PhotonGrid {
     pub photons: wgpu::Buffer,
     /// The cells' ranges of photon indices, up to 27 entries per photon slot.
     pub entries: wgpu::Buffer,
+    /// Per photon slot, the cells `cs_size` counted it in, which `cs_grid_scatter` lists it in.
+    pub cells: wgpu::Buffer,
     /// Heads (a power of two; 1 in an empty grid).
     pub head_count: u64,
 }
@@ -42,7 +50,7 @@ pub struct PhotonGrid {
 impl PhotonGrid {
     /// A grid for the `capacity` photon slots of the punctual lights, their quads sized by
     /// `settings`; with 0, an empty one that no lookup reads past its header (the resolve's
-    /// binding when no photons are traced).
+    /// binding when no photons are traced, and the probe's photon group's, which lists none).
     pub fn new(device: &wgpu::Device, capacity: u64, settings: &CausticsSettings) -> Self {
         let head_count = if capacity == 0 { 1 } else { GRID_HEADS };
         let mut words = vec![0u32; (GRID_HEADER_WORDS + 2 * head_count) as usize];
@@ -63,7 +71,13 @@ impl PhotonGrid {
             }),
             entries: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("specular/photon_grid/entries"),
-                size: capacity.max(1) * GRID_CELLS_PER_PHOTON * 4,
+                size: capacity.max(1) * GRID_ENTRY_BYTES_PER_SLOT,
+                usage,
+                mapped_at_creation: false,
+            }),
+            cells: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("specular/photon_grid/cells"),
+                size: capacity.max(1) * 16,
                 usage,
                 mapped_at_creation: false,
             }),

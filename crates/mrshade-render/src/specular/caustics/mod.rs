@@ -17,8 +17,9 @@ use wgpu::util::DeviceExt;
 
 mod grid;
 pub use grid::{
-    GRID_BOX_MIN_WORD, GRID_CELLS_PER_PHOTON, GRID_EPSILON_WORD, GRID_HEADER_WORDS, GRID_PHOTON_BYTES,
-    GRID_RANGES_WORKGROUP, GRID_SPLAT_MIN_WORD, GRID_TOTAL_WORD, PhotonGrid,
+    GRID_BOX_MIN_WORD, GRID_BYTES_PER_SLOT, GRID_CELLS_PER_PHOTON, GRID_ENTRY_BYTES_PER_SLOT, GRID_EPSILON_WORD,
+    GRID_HEADER_WORDS, GRID_HEADS, GRID_PHOTON_BYTES, GRID_RANGES_WORKGROUP, GRID_SPLAT_MIN_WORD, GRID_TOTAL_WORD,
+    PhotonGrid,
 };
 
 /// Mirrors `CausticParams` in photons.wgsl.
@@ -203,7 +204,7 @@ impl Caustics {
         let emit_output = bind::layout(
             device,
             "specular/photons_output",
-            &(0..6).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
+            &(0..7).map(|i| bind::storage_rw(i, cs)).collect::<Vec<_>>(),
         );
         let emit_probe = bind::layout(device, "specular/photons_probe", &GpuProbe::layout_entries(cs));
         let [impostors, owners, impostor_texels] = inputs.impostors;
@@ -329,7 +330,7 @@ impl Caustics {
                     device,
                     &format!("{label}/output"),
                     &emit_output,
-                    &[&photons, &list, &draws, &own_grid.heads, &own_grid.photons, &own_grid.entries]
+                    &[&photons, &list, &draws, &own_grid.heads, &own_grid.photons, &own_grid.entries, &own_grid.cells]
                         .map(|b| b.as_entire_binding()),
                 ),
                 probe_group.clone(),
