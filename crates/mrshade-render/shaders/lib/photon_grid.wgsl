@@ -32,6 +32,9 @@ const GRID_HEADER: u32 = 12u;
 const GRID_LEVELS_WORD: u32 = 0u;
 const GRID_SPLAT_MIN_WORD: u32 = 1u;
 const GRID_EPSILON_WORD: u32 = 2u;
+// Texels of a light's photon map (photon_resolution²), written once: a photon's kind from its
+// index.
+const GRID_MAP_TEXELS_WORD: u32 = 3u;
 // The box's lower corner (x, y, z; order keys complemented) and upper corner (order keys).
 const GRID_BOX_MIN_WORD: u32 = 4u;
 const GRID_BOX_MAX_WORD: u32 = 8u;
