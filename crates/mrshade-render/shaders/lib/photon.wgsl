@@ -16,6 +16,10 @@ const PHOTON_KINDS: u32 = 4u;
 // the point at `local` (in half-sizes from its centre, inside the quad): a tent that
 // integrates to one over the quad (the splat's and the world-space grid's kernel alike).
 fn quad_irradiance(power: vec3f, local: vec2f, half_size: f32) -> vec3f {
-    let tent = (1.0 - abs(local.x)) * (1.0 - abs(local.y));
-    return power * tent / (half_size * half_size);
+    return power * quad_tent(local) / (half_size * half_size);
+}
+
+// The tent kernel at `local` (the quad's corners at ±1): 1 at the centre, 0 at the edges.
+fn quad_tent(local: vec2f) -> f32 {
+    return (1.0 - abs(local.x)) * (1.0 - abs(local.y));
 }

@@ -22,19 +22,28 @@
 struct GridPhoton {
     // where it landed; w: its quad half-size (m)
     position: vec4f,
-    // the receiver's normal (facing the photon); w: 0 a photon of L_rv, 1 of L_r
+    // the receiver's normal (facing the photon); w: which world's light it carries
+    // (GRID_OF_RV, GRID_OF_R, GRID_OF_BOTH)
     normal: vec4f,
     // power, W (rgb); w: unused
     power: vec4f,
 }
 
+// GridPhoton.normal.w: a photon of L_rv, of L_r, or one of L_rv whose L_r twin (the same
+// light and texel) landed the same, listed once for both worlds. A lookup that reads a subset
+// of a crowded cell then adds the same photons to both worlds where no virtual part changed
+// their paths (no virtual content: the photo, to the bit), and twins are listed once.
+const GRID_OF_RV: f32 = 0.0;
+const GRID_OF_R: f32 = 1.0;
+const GRID_OF_BOTH: f32 = 2.0;
+// GridCells packed for a photon that is not listed (its twin carries it).
+const GRID_NOT_LISTED: vec4i = vec4i(0, 0, 0, -1);
+
 const GRID_HEADER: u32 = 12u;
 const GRID_LEVELS_WORD: u32 = 0u;
 const GRID_SPLAT_MIN_WORD: u32 = 1u;
 const GRID_EPSILON_WORD: u32 = 2u;
-// Texels of a light's photon map (photon_resolution²), written once: a photon's kind from its
-// index.
-const GRID_MAP_TEXELS_WORD: u32 = 3u;
+// (Word 3 is unused.)
 // The box's lower corner (x, y, z; order keys complemented) and upper corner (order keys).
 const GRID_BOX_MIN_WORD: u32 = 4u;
 const GRID_BOX_MAX_WORD: u32 = 8u;

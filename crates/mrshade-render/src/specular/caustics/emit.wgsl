@@ -211,9 +211,9 @@ var<workgroup> group_levels: atomic<u32>;
 var<workgroup> group_box: array<atomic<u32>, 6>;
 
 // Counts the landed photon `index` (its half-size sized) in the cells of the world-space
-// grid that its footprint touches, and copies it there, as a photon of L_r (`of_r` 1) or of
-// L_rv (0); cs_grid_scatter lists it once the cells' ranges are known.
-fn grid_count(index: u32, of_r: f32) {
+// grid that its footprint touches, and copies it there, as a photon of `world` (GRID_OF_RV,
+// GRID_OF_R); cs_grid_scatter lists it once the cells' ranges are known.
+fn grid_count(index: u32, world: f32) {
     let photon = photons[index];
     let splat_min = caustics.splat.x;
     let p = photon.position.xyz;
@@ -232,8 +232,28 @@ fn grid_count(index: u32, of_r: f32) {
             atomicAdd(&grid[grid_count_word(grid_head(level, grid_cells_at(cells, k), heads))], 1u);
         }
     }
-    grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, of_r), vec4f(photon.power.rgb, 0.0));
+    grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, world), vec4f(photon.power.rgb, 0.0));
     grid_photon_cells[index] = grid_cells_pack(cells, level);
+}
+
+// Puts the sized photon of `light`, `kind` and `texel` on the grid, once both worlds' photons
+// of this texel and branch are known: an L_r photon that landed as its L_rv twin did (no
+// virtual part on its path) is not listed, the twin carries it for both worlds.
+fn grid_add(light: u32, kind: u32, texel: vec2u, landed: array<bool, 4>) {
+    let index = photon_index(light, kind, texel);
+    if (kind < 2u) {
+        grid_count(index, GRID_OF_RV);
+        return;
+    }
+    let twin = photon_index(light, kind - 2u, texel);
+    let a = photons[index];
+    let b = photons[twin];
+    if (landed[kind - 2u] && all(a.position == b.position) && all(a.normal == b.normal) && all(a.power == b.power)) {
+        grid_photons[twin].normal.w = GRID_OF_BOTH;
+        grid_photon_cells[index] = GRID_NOT_LISTED;
+    } else {
+        grid_count(index, GRID_OF_R);
+    }
 }
 
 // Adds the workgroup's levels and box to the grid's header, once per workgroup (local
@@ -286,7 +306,7 @@ fn cs_size(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_i
         landed[kind] = true;
         // The probe's photons stay off the grid: surfaces off screen take the probe
         // unshadowed (resolve.wgsl, shade_hit), which holds the sky a glass lets through.
-        if (caustics.info.z == 0u) { grid_count(index, select(0.0, 1.0, kind >= 2u)); }
+        if (caustics.info.z == 0u) { grid_add(id.z, kind, id.xy, landed); }
     }
     workgroupBarrier();
     grid_header_update(local);
@@ -338,6 +358,7 @@ fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
         let index = photon_index(id.z, kind, id.xy);
         if (photons[index].position.w == 0.0) { continue; }
         let packed = grid_photon_cells[index];
+        if (all(packed == GRID_NOT_LISTED)) { continue; }
         let level = grid_cells_level(packed);
         let cells = grid_cells_unpack(packed);
         for (var k = 0; k < cells.count.x * cells.count.y * cells.count.z; k++) {

@@ -11,8 +11,6 @@ pub const GRID_HEADER_WORDS: u64 = 12;
 pub const GRID_SPLAT_MIN_WORD: u64 = 1;
 /// Header word of the depth epsilon, written once (`GRID_EPSILON_WORD`).
 pub const GRID_EPSILON_WORD: u64 = 2;
-/// Header word of a light's photon-map texels, written once (`GRID_MAP_TEXELS_WORD`).
-pub const GRID_MAP_TEXELS_WORD: u64 = 3;
 /// First header word of the photons' box (`GRID_BOX_MIN_WORD`), from which the frame's clear
 /// runs through the heads' counts.
 pub const GRID_BOX_MIN_WORD: u64 = 4;
@@ -58,7 +56,6 @@ impl PhotonGrid {
         let mut words = vec![0u32; (GRID_HEADER_WORDS + 2 * head_count) as usize];
         words[GRID_SPLAT_MIN_WORD as usize] = settings.splat_min.to_bits();
         words[GRID_EPSILON_WORD as usize] = settings.depth_epsilon.to_bits();
-        words[GRID_MAP_TEXELS_WORD as usize] = settings.photon_resolution * settings.photon_resolution;
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
         Self {
             heads: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

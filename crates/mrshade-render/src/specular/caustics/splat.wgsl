@@ -25,18 +25,25 @@ struct Splat {
     @builtin(position) clip: vec4f,
     // the quad's corner, in half-sizes
     @location(0) local: vec2f,
-    @location(1) @interpolate(flat) photon: u32,
-    @location(2) @interpolate(flat) half_size: f32,
+    // the point of the quad (world), perspective-interpolated: exact on the plane
+    @location(1) world: vec3f,
+    // the photon's power over its quad's area: its irradiance where the tent is 1
+    @location(2) @interpolate(flat) irradiance: vec3f,
+    // the receiver's normal
+    @location(3) @interpolate(flat) normal: vec3f,
     // caustic-buffer divisor of the level drawn
-    @location(3) @interpolate(flat) divisor: u32,
+    @location(4) @interpolate(flat) divisor: u32,
+    // 0, 1: a photon of L_rv; 2, 3: of L_r
+    @location(5) @interpolate(flat) kind: u32,
 }
 
+// What is the same over a photon's quad is worked out once, in its six vertices, rather than
+// in each of its fragments (the probe's 64 directions overlap hundreds of quads a texel).
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32) -> Splat {
     var out: Splat;
     // Six vertices per photon (not instances of six: tiny instances starve the vertex stage).
     let index = splat_list[level.x * photon_slots() + vertex / 6u];
-    out.photon = index;
     let photon = photons[index];
     let h = photon.normal.w;
     // Two triangles: corners (−1,−1) (1,−1) (1,1), (−1,−1) (1,1) (−1,1).
@@ -49,7 +56,10 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> Splat {
     let world = photon.position.xyz + (tb[0] * local.x + tb[1] * local.y) * h;
     out.clip = frame.clip_from_world * vec4f(world, 1.0);
     out.local = local;
-    out.half_size = h;
+    out.world = world;
+    out.kind = (index / (caustics.info.x * caustics.info.x)) % PHOTON_KINDS;
+    out.irradiance = photon.power.rgb / (h * h);
+    out.normal = photon.normal.xyz;
     out.divisor = caustics.info.w * select(1u, COARSE_LEVEL_FACTOR, level.x == 1u);
     return out;
 }
@@ -61,21 +71,18 @@ struct Targets {
 
 @fragment
 fn fs_main(in: Splat) -> Targets {
-    let photon = photons[in.photon];
     // This caustic-buffer texel's centre on the full-size G-buffer.
     let at = in.clip.xy * f32(in.divisor);
     let pixel = min(vec2i(at), vec2i(frame.size.xy) - 1);
-    let tb = tangent_frame(photon.normal.xyz);
-    let world = photon.position.xyz + (tb[0] * in.local.x + tb[1] * in.local.y) * in.half_size;
     let surface = world_from_pixel(frame, at, textureLoad(gbuffer_depth_motion, pixel, 0).x);
     let to_camera = distance(surface, frame.camera_position.xyz);
     let n = textureLoad(gbuffer_normal_roughness, pixel, 0).xyz;
-    if (distance(world, surface) > caustics.splat.w * to_camera || dot(n, photon.normal.xyz) < 0.5) {
+    if (distance(in.world, surface) > caustics.splat.w * to_camera || dot(n, in.normal) < 0.5) {
         discard;
     }
-    let e = vec4f(quad_irradiance(photon.power.rgb, in.local, in.half_size), 1.0);
-    let kind = (in.photon / (caustics.info.x * caustics.info.x)) % PHOTON_KINDS;
+    // quad_irradiance, its division done per photon.
+    let e = vec4f(in.irradiance * quad_tent(in.local), 1.0);
     var out: Targets;
-    if (kind < 2u) { out.rv = e; } else { out.r = e; }
+    if (in.kind < 2u) { out.rv = e; } else { out.r = e; }
     return out;
 }
