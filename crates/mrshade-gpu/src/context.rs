@@ -8,11 +8,12 @@ pub const NO_ADAPTER_HELP: &str = "no GPU adapter found: mrshade needs a Vulkan 
 On a machine without a GPU install Mesa's software driver lavapipe \
 (Debian/Ubuntu: `apt-get install mesa-vulkan-drivers`); on a GPU machine install its Vulkan driver";
 
-/// Features mrshade cannot run without: 64-bit integers and 64-bit atomic max/min in storage
-/// buffers, for the compute rasteriser (Vulkan `shaderBufferInt64Atomics`; lavapipe and
-/// current desktop GPUs have them).
-pub const REQUIRED_FEATURES: wgpu::Features =
-    wgpu::Features::SHADER_INT64.union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
+/// Features mrshade cannot run without: 64-bit integers and 64-bit atomics in storage
+/// buffers, for the compute rasteriser (max) and the caustic splat's fixed-point sums (add)
+/// (Vulkan `shaderBufferInt64Atomics`; lavapipe and current desktop GPUs have them).
+pub const REQUIRED_FEATURES: wgpu::Features = wgpu::Features::SHADER_INT64
+    .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX)
+    .union(wgpu::Features::SHADER_INT64_ATOMIC_ALL_OPS);
 
 /// How to pick the adapter.
 #[derive(Clone, Debug, Default)]

@@ -68,61 +68,6 @@ pub fn compute_pipeline_with(
     })
 }
 
-/// A render pipeline of `vs_main` and `fs_main` in `source`, without vertex buffers (the
-/// vertex shader pulls what it draws from storage), whose fragments add to `targets`
-/// (additive blending of every channel, e.g. splats gathered into one buffer).
-pub fn additive_render_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    layouts: &[&wgpu::BindGroupLayout],
-    targets: &[wgpu::TextureFormat],
-) -> wgpu::RenderPipeline {
-    let module = create_module(device, &format!("{label}/shader"), source);
-    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(|l| Some(*l)).collect();
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(&format!("{label}/pipeline_layout")),
-        bind_group_layouts: &layouts,
-        immediate_size: 0,
-    });
-    let add = wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    };
-    let targets: Vec<Option<wgpu::ColorTargetState>> = targets
-        .iter()
-        .map(|&format| {
-            Some(wgpu::ColorTargetState {
-                format,
-                blend: Some(wgpu::BlendState { color: add, alpha: add }),
-                write_mask: wgpu::ColorWrites::ALL,
-            })
-        })
-        .collect();
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(&format!("{label}/pipeline")),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: None,
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
-}
-
 /// Most workgroups a dispatch may have along one dimension (WebGPU's default limit).
 pub const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65535;
 

@@ -289,7 +289,7 @@ fn caustic_structs_match() {
     use mrshade_render::specular::caustics::{
         COARSE_LEVEL_FACTOR, CausticParams, GRID_BOX_MIN_WORD, GRID_CELLS_PER_PHOTON, GRID_EPSILON_WORD,
         GRID_HEADER_WORDS, GRID_PHOTON_BYTES, GRID_RANGES_WORKGROUP, GRID_SPLAT_MIN_WORD, GRID_TOTAL_WORD,
-        PHOTON_BYTES, PHOTONS_SHADER, SPLAT_SHADER,
+        PHOTON_BYTES, PHOTONS_SHADER, SPLAT_GROUPS, SPLAT_SHADER, SUM_WORDS,
     };
     assert_layout(
         PHOTONS_SHADER,
@@ -313,6 +313,8 @@ fn caustic_structs_match() {
         assert!(PHOTONS_SHADER.contains(&format!("const {name}: u32 = {word}u;")), "{name} = {word}");
     }
     assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
+    assert!(SPLAT_SHADER.contains(&format!("const SPLAT_GROUPS: u32 = {SPLAT_GROUPS}u;")));
+    assert!(SPLAT_SHADER.contains(&format!("const SUM_WORDS: u32 = {SUM_WORDS}u;")));
     assert!(PHOTONS_SHADER.contains(&format!("@compute @workgroup_size({GRID_RANGES_WORKGROUP})\nfn cs_grid_ranges")));
     let per_axis = (GRID_CELLS_PER_PHOTON as f64).cbrt().round() as u64;
     assert_eq!(per_axis.pow(3), GRID_CELLS_PER_PHOTON);

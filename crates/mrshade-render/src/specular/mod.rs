@@ -258,6 +258,7 @@ impl SpecularStage {
                 impostors: [&impostors.table, &owners, &impostors.texels],
                 interiors: [&interiors.table, &interiors.nodes, &interiors.triangles, &interiors.corners],
                 light_photons: inputs.light_photons,
+                buffer: &caustic_buffer,
                 depth_motion: &inputs.gbuffer.depth_motion,
                 normal_roughness: &inputs.gbuffer.normal_roughness,
             },
@@ -447,7 +448,6 @@ impl SpecularStage {
         if let Some(c) = &caustics {
             let (photons, sizes) = c.photon_dispatches();
             first.extend_from_slice(photons);
-            first.push(caustic_buffer.clear.clone());
             then.extend_from_slice(sizes);
         }
         let label = if caustics.is_some() { Self::RAYS_LABEL } else { Self::TRACE_LABEL };
@@ -524,7 +524,7 @@ impl SpecularStage {
     pub fn record_light(&mut self, rec: &mut Recorder, vpl_parity: usize) {
         rec.flush_side_jobs();
         if let Some(caustics) = &self.caustics {
-            caustics.record_splat(rec, &self.caustic_buffer);
+            caustics.keep_landed(rec);
         }
         let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
         rec.compute(Self::RESOLVE_LABEL, |pass| {

@@ -48,6 +48,11 @@ pub const PHOTON_KINDS: u64 = 4;
 pub const SPLAT_LIST_BYTES: u64 = 8;
 /// The two levels' indirect draws (`SplatDraw` in photons.wgsl) before cs_size counts.
 const EMPTY_DRAWS: [u32; 8] = [0, 1, 0, 0, 0, 1, 0, 0];
+/// Workgroups of the splat per level, each taking every `SPLAT_GROUPS`-th photon of the
+/// level's list (`SPLAT_GROUPS` in splat.wgsl).
+pub const SPLAT_GROUPS: u32 = 4096;
+/// The splat's 64-bit fixed-point sums per texel and differential half (`SUM_WORDS`).
+pub const SUM_WORDS: u64 = 4;
 /// Bytes of a group's two indirect draws (what `LightPhotons::landed` keeps of them).
 pub const SPLAT_DRAWS_BYTES: u64 = std::mem::size_of_val(&EMPTY_DRAWS) as u64;
 
@@ -65,6 +70,8 @@ pub struct CausticInputs<'a> {
     pub interiors: [&'a wgpu::Buffer; 4],
     /// The punctual lights' photon G-buffer, made before the stage.
     pub light_photons: Option<&'a LightPhotons>,
+    /// The caustic buffer the photons are splatted into.
+    pub buffer: &'a CausticBuffer,
     /// The camera's depth and normal G-buffer targets.
     pub depth_motion: &'a Target,
     /// See `depth_motion`.
@@ -85,8 +92,6 @@ struct PhotonGroup {
     draws: wgpu::Buffer,
     /// Where the lights' group copies its draws for the next frame's caustic VPLs.
     landed: Option<wgpu::Buffer>,
-    /// Per level.
-    splat_groups: [wgpu::BindGroup; 2],
 }
 
 /// The photon G-buffer of the punctual lights (`Photon` in shaders/lib/photon.wgsl, per light,
@@ -160,9 +165,8 @@ pub struct Caustics {
     /// and kind.
     emit: Vec<Dispatch>,
     /// Each group's photons' quad sizes, from their neighbours (after all have landed), and
-    /// splat lists.
-    size: Vec<Dispatch>,
-    splat: wgpu::RenderPipeline,
+    /// splat lists; then the splat of each group and the caustic buffer's finish.
+    then: Vec<Dispatch>,
     /// The landed photons in world space, for the surfaces the camera does not see.
     pub grid: PhotonGrid,
 }
@@ -170,8 +174,6 @@ pub struct Caustics {
 impl Caustics {
     /// GPU timing label of the photon tracing.
     pub const PHOTONS_LABEL: &'static str = "specular/photons";
-    /// GPU timing label of the splatting.
-    pub const SPLAT_LABEL: &'static str = "specular/caustic_splat";
 
     /// The caustics of `gpu_scene`'s punctual lights (and of the probe, with
     /// `probe_caustics`) through the traced instances `casters`, or `None` when they are off
@@ -242,38 +244,56 @@ impl Caustics {
                     mrshade_gpu::shader::compute_pipeline_entry(device, label, PHOTONS_SHADER, entry, &emit_layouts)
                 });
 
-        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let fragment = wgpu::ShaderStages::FRAGMENT;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
         let splat_layout = bind::layout(
             device,
             "specular/caustic_splat",
             &[
-                bind::uniform(0, vf),
-                bind::uniform(1, vf),
-                bind::storage(2, vf),
-                bind::texture(3, fragment, unfilterable, d2),
-                bind::texture(4, fragment, unfilterable, d2),
-                bind::storage(5, wgpu::ShaderStages::VERTEX),
-                bind::uniform(6, vf),
+                bind::uniform(0, cs),
+                bind::uniform(1, cs),
+                bind::storage(2, cs),
+                bind::texture(3, cs, unfilterable, d2),
+                bind::texture(4, cs, unfilterable, d2),
+                bind::storage(5, cs),
+                bind::storage(6, cs),
+                bind::storage_rw(7, cs),
             ],
         );
-        let levels = [0u32, 1].map(|level| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(&format!("specular/caustic_level_{level}")),
-                contents: bytemuck::bytes_of(&UVec4::new(level, 0, 0, 0)),
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-        });
         let half = wgpu::TextureFormat::Rgba16Float;
-        let splat = mrshade_gpu::shader::additive_render_pipeline(
+        let finish_layout = bind::layout(
             device,
-            Self::SPLAT_LABEL,
-            SPLAT_SHADER,
-            &[&splat_layout],
-            &[half, half],
+            "specular/caustic_finish",
+            &(0..4).map(|i| bind::storage_texture(i, half)).collect::<Vec<_>>(),
         );
+        let splat = mrshade_gpu::shader::compute_pipeline_entry(
+            device,
+            "specular/caustic_splat",
+            SPLAT_SHADER,
+            "cs_splat",
+            &[&splat_layout],
+        );
+        let finish = mrshade_gpu::shader::compute_pipeline_entry(
+            device,
+            "specular/caustic_finish",
+            SPLAT_SHADER,
+            "cs_finish",
+            &[&splat_layout, &finish_layout],
+        );
+        let levels = &inputs.buffer.levels;
+        let texels: u64 = levels.iter().map(|l| l.rv.texture.width() as u64 * l.rv.texture.height() as u64).sum();
+        // Both halves of both levels, SUM_WORDS sums of 8 bytes a texel (zero at creation;
+        // cs_finish empties them after every frame).
+        let sums = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("specular/caustic_sums"),
+            size: 2 * texels * SUM_WORDS * 8,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let targets = [&levels[0].rv, &levels[0].r, &levels[1].rv, &levels[1].r]
+            .map(|t| wgpu::BindingResource::TextureView(&t.view));
+        let finish_group = bind::group(device, "specular/caustic_finish", &finish_layout, &targets);
+        let (mut splat_dispatches, mut splat_finish) = (Vec::new(), None);
 
         let scene_group =
             bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
@@ -355,22 +375,36 @@ impl Caustics {
                     },
                 ]);
             }
-            let splat_groups = [0, 1].map(|level| {
-                bind::group(
-                    device,
-                    &format!("{label}/splat_{level}"),
-                    &splat_layout,
-                    &[
-                        frame.as_entire_binding(),
-                        params.as_entire_binding(),
-                        photons.as_entire_binding(),
-                        TextureView(&inputs.depth_motion.view),
-                        TextureView(&inputs.normal_roughness.view),
-                        list.as_entire_binding(),
-                        levels[level].as_entire_binding(),
-                    ],
-                )
+            let splat_group = bind::group(
+                device,
+                &format!("{label}/splat"),
+                &splat_layout,
+                &[
+                    frame.as_entire_binding(),
+                    params.as_entire_binding(),
+                    photons.as_entire_binding(),
+                    TextureView(&inputs.depth_motion.view),
+                    TextureView(&inputs.normal_roughness.view),
+                    list.as_entire_binding(),
+                    draws.as_entire_binding(),
+                    sums.as_entire_binding(),
+                ],
+            );
+            // Both levels' photons, after every group's cs_size (the grid's lists need not
+            // wait: the splat reads neither).
+            splat_dispatches.push(Dispatch {
+                pipeline: splat.clone(),
+                groups: vec![splat_group.clone()],
+                workgroups: [SPLAT_GROUPS, 2, 1],
             });
+            if splat_dispatches.len() == 1 {
+                let (w, h) = (levels[0].rv.texture.width(), levels[0].rv.texture.height());
+                splat_finish = Some(Dispatch {
+                    pipeline: finish.clone(),
+                    groups: vec![splat_group, finish_group.clone()],
+                    workgroups: [w.div_ceil(8), h.div_ceil(8), 1],
+                });
+            }
             groups.push(PhotonGroup {
                 sources,
                 resolution,
@@ -379,10 +413,12 @@ impl Caustics {
                 params,
                 photons,
                 draws,
-                splat_groups,
             });
         }
-        Some(Self { settings, casters, groups, emit: emit_dispatches, size: size_dispatches, splat, grid })
+        let mut then = size_dispatches;
+        then.extend(splat_dispatches);
+        then.extend(splat_finish);
+        Some(Self { settings, casters, groups, emit: emit_dispatches, then, grid })
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their
@@ -413,37 +449,19 @@ impl Caustics {
 
     /// The photon tracing, one thread per photon and kind: the chain of one photon's reads,
     /// not the GPU's throughput, bounds it, so it runs beside other work (`SideJob::first`);
-    /// then each photon's quad size and the splat lists (`SideJob::then`).
+    /// then each photon's quad size and the splat lists, the splat and the caustic buffer
+    /// (`SideJob::then`).
     pub fn photon_dispatches(&self) -> (&[Dispatch], &[Dispatch]) {
-        (&self.emit, &self.size)
+        (&self.emit, &self.then)
     }
 
-    /// Splats the photons traced by [`Caustics::photon_dispatches`] into both levels of
-    /// `buffer`.
-    pub fn record_splat(&self, rec: &mut Recorder, buffer: &CausticBuffer) {
+    /// Keeps the lights' landed photons of this frame for the next frame's caustic VPLs
+    /// (after the side job of [`Caustics::photon_dispatches`]).
+    pub fn keep_landed(&self, rec: &mut Recorder) {
         for g in &self.groups {
             if let Some(landed) = &g.landed {
                 rec.encoder.copy_buffer_to_buffer(&g.draws, 0, landed, 0, SPLAT_DRAWS_BYTES);
             }
-        }
-        // `CausticBuffer::clear` emptied the targets beside the photon tracing.
-        fn load(t: &Target) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-            Some(wgpu::RenderPassColorAttachment {
-                view: &t.view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-            })
-        }
-        // Each level draws the photons cs_size listed for it.
-        for (level, target) in buffer.levels.iter().enumerate() {
-            rec.render(Self::SPLAT_LABEL, &[load(&target.rv), load(&target.r)], None, |pass| {
-                pass.set_pipeline(&self.splat);
-                for g in &self.groups {
-                    pass.set_bind_group(0, &g.splat_groups[level], &[]);
-                    pass.draw_indirect(&g.draws, level as u64 * 16);
-                }
-            });
         }
     }
 }
@@ -506,18 +524,13 @@ pub struct CausticBuffer {
     /// most `splat_max` apart, and the coarse one (1/`COARSE_LEVEL_FACTOR` of that) of those
     /// farther apart.
     pub levels: [Differential<Target>; 2],
-    /// Empties both levels (before the splat; a dispatch, as the render pass's clear cost
-    /// 0.14 ms at 1080p on the H200).
-    pub clear: Dispatch,
 }
 
 impl CausticBuffer {
     /// Both levels for a frame of `size` and the fine level's `divisor`.
     pub fn new(device: &wgpu::Device, size: (u32, u32), divisor: u32) -> Self {
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::COPY_SRC;
+        let usage =
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC;
         let half = wgpu::TextureFormat::Rgba16Float;
         let level = |name: &str, divisor: u32| {
             let size = (size.0.div_ceil(divisor), size.1.div_ceil(divisor));
@@ -526,20 +539,7 @@ impl CausticBuffer {
                 r: Target::new_2d(device, &format!("specular/{name}_r"), size, half, usage),
             }
         };
-        let levels = [level("caustics", divisor), level("caustics_coarse", divisor * COARSE_LEVEL_FACTOR)];
-        let layout = bind::layout(
-            device,
-            "specular/caustics_clear",
-            &(0..4).map(|i| bind::storage_texture(i, half)).collect::<Vec<_>>(),
-        );
-        let views = [&levels[0].rv, &levels[0].r, &levels[1].rv, &levels[1].r]
-            .map(|t| wgpu::BindingResource::TextureView(&t.view));
-        let group = bind::group(device, "specular/caustics_clear", &layout, &views);
-        let pipeline =
-            mrshade_gpu::shader::compute_pipeline(device, "specular/caustics_clear", CLEAR_SHADER, &[&layout]);
-        let (w, h) = (levels[0].rv.texture.width(), levels[0].rv.texture.height());
-        let clear = Dispatch { pipeline, groups: vec![group], workgroups: [w.div_ceil(8), h.div_ceil(8), 1] };
-        Self { levels, clear }
+        Self { levels: [level("caustics", divisor), level("caustics_coarse", divisor * COARSE_LEVEL_FACTOR)] }
     }
 }
 
@@ -562,8 +562,6 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "photons.wgsl",
     "emit.wgsl",
 );
-/// The WGSL module that empties the caustic buffer.
-const CLEAR_SHADER: &str = wgsl!("clear.wgsl");
 /// The composed WGSL module of the splatting.
 pub const SPLAT_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
