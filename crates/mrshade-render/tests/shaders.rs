@@ -27,6 +27,7 @@ const MODULES: &[(&str, &str)] = &[
     ("vpl/bounce", vpl::BOUNCE_SHADER),
     ("ism/splat", ism::SHADER),
     ("ism/raster", ism::RASTER_SHADER),
+    ("ism/clear", ism::CLEAR_SHADER),
     ("indirect", indirect::SHADER),
     ("temporal", filter::TEMPORAL_SHADER),
     ("filter", filter::FILTER_SHADER),
@@ -314,6 +315,7 @@ fn caustic_structs_match() {
     }
     assert!(SPLAT_SHADER.contains(&format!("const COARSE_LEVEL_FACTOR: u32 = {COARSE_LEVEL_FACTOR}u;")));
     assert!(SPLAT_SHADER.contains(&format!("const SPLAT_GROUPS: u32 = {SPLAT_GROUPS}u;")));
+    assert!(ism::CLEAR_SHADER.contains(&format!("const CLEAR_GROUPS: u32 = {}u;", ism::CLEAR_GROUPS)));
     assert!(SPLAT_SHADER.contains(&format!("const SUM_WORDS: u32 = {SUM_WORDS}u;")));
     assert!(PHOTONS_SHADER.contains(&format!("@compute @workgroup_size({GRID_RANGES_WORKGROUP})\nfn cs_grid_ranges")));
     let per_axis = (GRID_CELLS_PER_PHOTON as f64).cbrt().round() as u64;

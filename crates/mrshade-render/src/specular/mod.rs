@@ -510,9 +510,6 @@ impl SpecularStage {
     /// method's shading.
     pub fn record_rays(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         self.impostors.record(rec, rasterizer);
-        if let Some(caustics) = &self.caustics {
-            caustics.grid.clear(&mut rec.encoder);
-        }
         if std::mem::take(&mut self.camera_views_stale) {
             rasterizer.record(rec, "specular/camera_views", &self.camera_views);
         }
@@ -523,9 +520,6 @@ impl SpecularStage {
     /// [`PointLight::parity`]) and smoothing, after `record_rays` and the method.
     pub fn record_light(&mut self, rec: &mut Recorder, vpl_parity: usize) {
         rec.flush_side_jobs();
-        if let Some(caustics) = &self.caustics {
-            caustics.keep_landed(rec);
-        }
         let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
         rec.compute(Self::RESOLVE_LABEL, |pass| {
             pass.set_pipeline(&self.resolve);
@@ -535,8 +529,15 @@ impl SpecularStage {
             }
             pass.dispatch_workgroups(w, h, 1);
         });
-        if let Some(temporal) = &mut self.temporal {
-            temporal.record(rec);
+        // The photon grid is emptied for the next frame once the resolve has read it.
+        let grid_clear = self.caustics.as_ref().and_then(|c| c.grid_clear.as_ref());
+        match &mut self.temporal {
+            Some(temporal) => temporal.record(rec, grid_clear),
+            None => {
+                if let Some(d) = grid_clear {
+                    rec.compute("specular/photon_grid/clear", |pass| d.record(pass));
+                }
+            }
         }
     }
 

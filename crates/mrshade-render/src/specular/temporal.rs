@@ -6,7 +6,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec4;
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{Target, bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -132,9 +132,13 @@ impl SpecularTemporal {
         );
     }
 
-    /// Smooths `fresh` into the output and keeps the result for the next frame.
-    pub fn record(&mut self, rec: &mut Recorder) {
+    /// Smooths `fresh` into the output and keeps the result for the next frame; `beside`
+    /// runs in the same pass (work of the frame's end that nothing after it reads).
+    pub fn record(&mut self, rec: &mut Recorder, beside: Option<&Dispatch>) {
         rec.compute(Self::LABEL, |pass| {
+            if let Some(d) = beside {
+                d.record(pass);
+            }
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.groups[self.parity], &[]);
             pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);

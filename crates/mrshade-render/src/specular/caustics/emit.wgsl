@@ -369,3 +369,16 @@ fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
         }
     }
 }
+
+// Empties the grid for the next frame's photons once the resolve has read it (a dispatch
+// beside the specular smoothing: a buffer fill between passes waits for all the work before
+// it): its levels (word 0), box, entries handed out and the heads' counts, one thread per
+// word; splat_min and the depth epsilon stay, and the range ends are written before they are
+// read.
+@compute @workgroup_size(256)
+fn cs_grid_clear(@builtin(global_invocation_id) id: vec3u) {
+    let word = id.x;
+    if (word < GRID_HEADER + grid_heads(arrayLength(&grid)) && (word == GRID_LEVELS_WORD || word >= GRID_BOX_MIN_WORD)) {
+        atomicStore(&grid[word], 0u);
+    }
+}

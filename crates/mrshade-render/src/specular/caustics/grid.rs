@@ -84,13 +84,4 @@ impl PhotonGrid {
             head_count,
         }
     }
-
-    /// Empties the grid for this frame's photons (before the photon pass's `cs_size`): its
-    /// levels (word 0), box, entries handed out and the heads' counts; splat_min and the depth
-    /// epsilon stay, and the range ends are written before they are read.
-    pub fn clear(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.clear_buffer(&self.heads, 0, Some(4));
-        let counts_end = (GRID_HEADER_WORDS + self.head_count) * 4;
-        encoder.clear_buffer(&self.heads, GRID_BOX_MIN_WORD * 4, Some(counts_end - GRID_BOX_MIN_WORD * 4));
-    }
 }

@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::Differential;
 use mrshade_core::settings::CausticsSettings;
-use mrshade_gpu::timing::{Dispatch, Recorder};
+use mrshade_gpu::timing::Dispatch;
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
@@ -90,8 +90,6 @@ struct PhotonGroup {
     photons: wgpu::Buffer,
     /// The indirect draw of each level (`SplatDraw` in photons.wgsl).
     draws: wgpu::Buffer,
-    /// Where the lights' group copies its draws for the next frame's caustic VPLs.
-    landed: Option<wgpu::Buffer>,
 }
 
 /// The photon G-buffer of the punctual lights (`Photon` in shaders/lib/photon.wgsl, per light,
@@ -169,6 +167,8 @@ pub struct Caustics {
     then: Vec<Dispatch>,
     /// The landed photons in world space, for the surfaces the camera does not see.
     pub grid: PhotonGrid,
+    /// Empties the grid once the resolve has read it (with punctual lights).
+    pub grid_clear: Option<Dispatch>,
 }
 
 impl Caustics {
@@ -238,11 +238,14 @@ impl Caustics {
             "cs_size",
             &emit_layouts,
         );
-        let [grid_ranges, grid_scatter] =
-            [("specular/photon_grid/ranges", "cs_grid_ranges"), ("specular/photon_grid/scatter", "cs_grid_scatter")]
-                .map(|(label, entry)| {
-                    mrshade_gpu::shader::compute_pipeline_entry(device, label, PHOTONS_SHADER, entry, &emit_layouts)
-                });
+        let [grid_ranges, grid_scatter, grid_clear] = [
+            ("specular/photon_grid/ranges", "cs_grid_ranges"),
+            ("specular/photon_grid/scatter", "cs_grid_scatter"),
+            ("specular/photon_grid/clear", "cs_grid_clear"),
+        ]
+        .map(|(label, entry)| {
+            mrshade_gpu::shader::compute_pipeline_entry(device, label, PHOTONS_SHADER, entry, &emit_layouts)
+        });
 
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
@@ -261,11 +264,9 @@ impl Caustics {
             ],
         );
         let half = wgpu::TextureFormat::Rgba16Float;
-        let finish_layout = bind::layout(
-            device,
-            "specular/caustic_finish",
-            &(0..4).map(|i| bind::storage_texture(i, half)).collect::<Vec<_>>(),
-        );
+        let mut finish_entries: Vec<_> = (0..4).map(|i| bind::storage_texture(i, half)).collect();
+        finish_entries.push(bind::storage_rw(4, cs));
+        let finish_layout = bind::layout(device, "specular/caustic_finish", &finish_entries);
         let splat = mrshade_gpu::shader::compute_pipeline_entry(
             device,
             "specular/caustic_splat",
@@ -290,8 +291,19 @@ impl Caustics {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let targets = [&levels[0].rv, &levels[0].r, &levels[1].rv, &levels[1].r]
-            .map(|t| wgpu::BindingResource::TextureView(&t.view));
+        // cs_finish keeps the first group's draws: the lights' landed photons for the next
+        // frame's caustic VPLs (or, without lights, a buffer nothing reads).
+        let no_landed = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("specular/caustic_no_landed"),
+            size: SPLAT_DRAWS_BYTES,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let landed = inputs.light_photons.filter(|_| lights > 0).map_or(&no_landed, |l| &l.landed);
+        let mut targets: Vec<_> = [&levels[0].rv, &levels[0].r, &levels[1].rv, &levels[1].r]
+            .map(|t| wgpu::BindingResource::TextureView(&t.view))
+            .into();
+        targets.push(landed.as_entire_binding());
         let finish_group = bind::group(device, "specular/caustic_finish", &finish_layout, &targets);
         let (mut splat_dispatches, mut splat_finish) = (Vec::new(), None);
 
@@ -308,6 +320,7 @@ impl Caustics {
         // on an H100).
         let no_grid = PhotonGrid::new(device, 0, &settings);
         let (mut groups, mut emit_dispatches, mut size_dispatches) = (Vec::new(), Vec::new(), Vec::new());
+        let mut grid_clear_dispatch = None;
         for (label, sources, resolution, from_probe) in [
             (LIGHTS_LABEL, lights, settings.photon_resolution, 0),
             ("specular/photons_probe", directions, settings.environment_resolution, 1),
@@ -374,6 +387,12 @@ impl Caustics {
                         workgroups: [side, side, sources],
                     },
                 ]);
+                let words = (GRID_HEADER_WORDS + grid.head_count) as u32;
+                grid_clear_dispatch = Some(Dispatch {
+                    pipeline: grid_clear.clone(),
+                    groups: emit_groups.clone(),
+                    workgroups: [words.div_ceil(256), 1, 1],
+                });
             }
             let splat_group = bind::group(
                 device,
@@ -405,20 +424,12 @@ impl Caustics {
                     workgroups: [w.div_ceil(8), h.div_ceil(8), 1],
                 });
             }
-            groups.push(PhotonGroup {
-                sources,
-                resolution,
-                from_probe,
-                landed: shared.map(|l| l.landed.clone()),
-                params,
-                photons,
-                draws,
-            });
+            groups.push(PhotonGroup { sources, resolution, from_probe, params, photons, draws });
         }
         let mut then = size_dispatches;
         then.extend(splat_dispatches);
         then.extend(splat_finish);
-        Some(Self { settings, casters, groups, emit: emit_dispatches, then, grid })
+        Some(Self { settings, casters, groups, emit: emit_dispatches, then, grid, grid_clear: grid_clear_dispatch })
     }
 
     /// Aims the photon maps at where the casters are now: the bounding sphere of their
@@ -453,16 +464,6 @@ impl Caustics {
     /// (`SideJob::then`).
     pub fn photon_dispatches(&self) -> (&[Dispatch], &[Dispatch]) {
         (&self.emit, &self.then)
-    }
-
-    /// Keeps the lights' landed photons of this frame for the next frame's caustic VPLs
-    /// (after the side job of [`Caustics::photon_dispatches`]).
-    pub fn keep_landed(&self, rec: &mut Recorder) {
-        for g in &self.groups {
-            if let Some(landed) = &g.landed {
-                rec.encoder.copy_buffer_to_buffer(&g.draws, 0, landed, 0, SPLAT_DRAWS_BYTES);
-            }
-        }
     }
 }
 

@@ -143,6 +143,9 @@ fn cs_splat(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index
 @group(1) @binding(1) var fine_r: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(2) var coarse_rv: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(3) var coarse_r: texture_storage_2d<rgba16float, write>;
+// Where the lights' landed photons per level (their splat draws) stay for the next frame's
+// caustic VPLs (dir, reflections spec §2.18), copied here rather than between passes.
+@group(1) @binding(4) var<storage, read_write> landed: array<vec4u, 2>;
 
 fn sum_texel(level: u32, half: u32, texel: vec2u) -> vec4f {
     return vec4f(
@@ -157,6 +160,7 @@ fn sum_texel(level: u32, half: u32, texel: vec2u) -> vec4f {
 // texel; the coarse level's texels are the first 1/COARSE_LEVEL_FACTOR² of them.
 @compute @workgroup_size(8, 8)
 fn cs_finish(@builtin(global_invocation_id) id: vec3u) {
+    if (all(id.xy < vec2u(2u, 1u))) { landed[id.x] = splat_draws[id.x]; }
     if (all(id.xy < level_size(0u))) {
         textureStore(fine_rv, id.xy, sum_texel(0u, 0u, id.xy));
         textureStore(fine_r, id.xy, sum_texel(0u, 1u, id.xy));

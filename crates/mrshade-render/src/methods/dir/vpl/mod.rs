@@ -13,7 +13,7 @@ use crate::specular::caustics::{LightPhotons, PHOTON_BYTES, SPLAT_DRAWS_BYTES, S
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec3, Vec4};
 use mrshade_core::settings::{BounceMethod, DirSettings, Distribution};
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{GpuContext, bind, wgsl};
 use mrshade_scene::Session;
 use wgpu::util::DeviceExt;
@@ -391,8 +391,9 @@ impl VplPass {
         queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
     }
 
-    /// Creates this frame's VPLs in buffer `parity`.
-    pub fn record(&self, rec: &mut Recorder, parity: usize) {
+    /// Creates this frame's VPLs in buffer `parity`; `beside` runs beside the pass's last
+    /// dispatch (work for the passes after it that none of this pass's dispatches touches).
+    pub fn record(&self, rec: &mut Recorder, parity: usize, beside: &Dispatch) {
         rec.encoder.clear_buffer(&self.best, 0, None);
         rec.encoder.clear_buffer(&self.near, 0, Some(4));
         let n = self.params.counts.x;
@@ -419,6 +420,7 @@ impl VplPass {
                 pass.set_pipeline(&self.finalize);
                 pass.dispatch_workgroups(n, 1, 1);
             }
+            beside.record(pass);
         });
     }
 }
