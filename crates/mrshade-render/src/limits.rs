@@ -76,6 +76,9 @@ impl Fit<'_> {
     }
 }
 
+/// The largest `caustics.buffer_divisor` (its settings' bound).
+const MAX_CAUSTIC_DIVISOR: u32 = 8;
+
 /// What a device allows, from `wgpu::Limits`.
 #[derive(Clone, Copy, Debug)]
 pub struct DeviceLimits {
@@ -163,6 +166,22 @@ pub fn fit_to_device(session: &Session, device: DeviceLimits) -> Result<(RenderS
              device holds ({} MiB) even at 4×4 photons each; use fewer directions",
             max_binding >> 20
         );
+    }
+    // The caustic splat's fixed-point sums of both levels in one buffer: a coarser caustic
+    // buffer (64 bytes a caustic texel: 33 MiB at 1080p and the default divisor 2).
+    let frame = (output.width * output.supersample, output.height * output.supersample);
+    let requested = settings.caustics.buffer_divisor;
+    let divisor = &mut settings.caustics.buffer_divisor;
+    while *divisor < MAX_CAUSTIC_DIVISOR && crate::specular::caustics::sum_bytes(frame, *divisor) > max_binding {
+        *divisor += 1;
+    }
+    if *divisor != requested {
+        fit.warnings.push(format!(
+            "caustics.buffer_divisor = {requested} needs more GPU memory in one buffer than this device binds ({} \
+             MiB); using {}",
+            max_binding >> 20,
+            *divisor
+        ));
     }
     // The specular stage's impostors or cube faces, and the planar reflectors' views at the
     // frame's size, in one buffer: coarser slices.
@@ -310,6 +329,12 @@ fn estimate(scene: &Scene, settings: &RenderSettings, output: &OutputSize) -> Es
             "caustic photons (lights × photon_resolution² + environment_directions × environment_resolution²)",
             (lights + directions) * photon_bytes,
         ));
+        let ss = output.supersample;
+        let frame = (output.width * ss, output.height * ss);
+        items.push((
+            "caustic splat sums (64 bytes a caustic-buffer texel)",
+            crate::specular::caustics::sum_bytes(frame, c.buffer_divisor),
+        ));
         if lights > 0 {
             items.push((
                 "the lights' photons' world-space grid (heads, listed photons, entries)",
@@ -411,6 +436,18 @@ mod tests {
         let (fitted, _, warnings) = fit_to_device(&session(20, 640), SMALL_DEVICE).unwrap();
         assert_eq!(fitted.caustics.photon_resolution, 64);
         assert!(warnings.iter().any(|w| w.contains("caustics.photon_resolution = 128")), "{warnings:?}");
+    }
+
+    #[test]
+    fn the_caustic_splat_sums_fit_one_buffer() {
+        // 4096×3072 at divisor 2: (2048·1536 + 256·192) texels × 64 B = 195 MiB, more than
+        // 128 MiB; divisor 3 (1366·1024 + 171·128 texels, 87 MiB) fits.
+        assert_eq!(crate::specular::caustics::sum_bytes((4096, 3072), 2), (2048 * 1536 + 256 * 192) * 64);
+        let (fitted, _, warnings) = fit_to_device(&session(1, 4096), SMALL_DEVICE).unwrap();
+        assert_eq!(fitted.caustics.buffer_divisor, 3);
+        assert!(warnings.iter().any(|w| w.contains("caustics.buffer_divisor = 2")), "{warnings:?}");
+        let (fitted, _, _) = fit_to_device(&session(1, 640), SMALL_DEVICE).unwrap();
+        assert_eq!(fitted.caustics.buffer_divisor, 2);
     }
 
     #[test]

@@ -53,6 +53,13 @@ const EMPTY_DRAWS: [u32; 8] = [0, 1, 0, 0, 0, 1, 0, 0];
 pub const SPLAT_GROUPS: u32 = 4096;
 /// The splat's 64-bit fixed-point sums per texel and differential half (`SUM_WORDS`).
 pub const SUM_WORDS: u64 = 4;
+
+/// Bytes of the splat's fixed-point sums (both levels and halves) for a frame of `size` and
+/// a fine level of 1/`divisor` of it per axis: 64 bytes a caustic texel.
+pub fn sum_bytes(size: (u32, u32), divisor: u32) -> u64 {
+    let texels = |d: u32| size.0.div_ceil(d) as u64 * size.1.div_ceil(d) as u64;
+    2 * SUM_WORDS * 8 * (texels(divisor) + texels(divisor * COARSE_LEVEL_FACTOR))
+}
 /// Bytes of a group's two indirect draws (what `LightPhotons::landed` keeps of them).
 pub const SPLAT_DRAWS_BYTES: u64 = std::mem::size_of_val(&EMPTY_DRAWS) as u64;
 
@@ -282,12 +289,11 @@ impl Caustics {
             &[&splat_layout, &finish_layout],
         );
         let levels = &inputs.buffer.levels;
-        let texels: u64 = levels.iter().map(|l| l.rv.texture.width() as u64 * l.rv.texture.height() as u64).sum();
         // Both halves of both levels, SUM_WORDS sums of 8 bytes a texel (zero at creation;
         // cs_finish empties them after every frame).
         let sums = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("specular/caustic_sums"),
-            size: 2 * texels * SUM_WORDS * 8,
+            size: sum_bytes(inputs.buffer.size, settings.buffer_divisor),
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
@@ -525,6 +531,8 @@ pub struct CausticBuffer {
     /// most `splat_max` apart, and the coarse one (1/`COARSE_LEVEL_FACTOR` of that) of those
     /// farther apart.
     pub levels: [Differential<Target>; 2],
+    /// The frame's size it was made for.
+    pub size: (u32, u32),
 }
 
 impl CausticBuffer {
@@ -540,7 +548,7 @@ impl CausticBuffer {
                 r: Target::new_2d(device, &format!("specular/{name}_r"), size, half, usage),
             }
         };
-        Self { levels: [level("caustics", divisor), level("caustics_coarse", divisor * COARSE_LEVEL_FACTOR)] }
+        Self { levels: [level("caustics", divisor), level("caustics_coarse", divisor * COARSE_LEVEL_FACTOR)], size }
     }
 }
 

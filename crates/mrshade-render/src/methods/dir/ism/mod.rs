@@ -304,17 +304,10 @@ impl IsmPass {
             contents: bytemuck::cast_slice(&[0u32, BIG_TILE_STRIDE, 1]),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        let clear_layout = bind::layout(
-            device,
-            "ism/clear",
-            &[
-                bind::storage_rw(0, cs),
-                bind::storage_rw(1, cs),
-                bind::storage_rw(2, cs),
-                bind::storage_rw(3, cs),
-                bind::storage(4, cs),
-            ],
-        );
+        // Both atlases and both arguments written, the arguments' initial values read.
+        let mut clear_entries: Vec<_> = (0..4).map(|i| bind::storage_rw(i, cs)).collect();
+        clear_entries.push(bind::storage(4, cs));
+        let clear_layout = bind::layout(device, "ism/clear", &clear_entries);
         let clear_group = bind::group(
             device,
             "ism/clear",
