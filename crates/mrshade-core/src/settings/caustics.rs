@@ -28,14 +28,13 @@ pub const MAX_SPLAT_RATIO: f32 = 32768.0;
 #[serde(default, deny_unknown_fields)]
 pub struct CausticsSettings {
     /// Trace photons from every punctual light (and the probe) through the traced objects.
-    /// Default on. They cost (1080p, NVIDIA H200, glass + mirror + spot, `dir`): 0.8 ms of
-    /// photon tracing and 0.35 ms of splatting at the defaults, over a 3.1 ms frame without.
+    /// Default on. They cost (1080p, NVIDIA H100, glass + mirror + spot, `dir`): 0.35 ms at
+    /// the defaults (frame 2.98 ms, 2.63 without; docs/benchmarks.md).
     pub enabled: bool,
     /// Side of each light's photon map (one photon per texel and branch, aimed at the
     /// bounding sphere of the traced objects). The thesis used 512 and 256 [T §7]; default
-    /// 128: splatting a focused caustic is bound by blending many photons into the same
-    /// pixels (1080p, H200, one spot, measured while the splat still ran over every photon
-    /// slot: 0.4 ms at 128², 1.3 ms at 256², 4.9 ms at 512²).
+    /// 128 (the bench scene's frame at 1080p on an H100: 2.94 ms at 64², 2.98 at 128², 3.20
+    /// at 256²).
     pub photon_resolution: u32,
     /// Smallest half-size of a photon's quad, metres (spec §2.17.2: "a user-defined minimum
     /// and maximum", 0.005 and 0.007 in the thesis's scene). Default 0.002.
@@ -71,7 +70,8 @@ pub struct CausticsSettings {
     /// Default 32.
     pub environment_resolution: u32,
     /// The caustic buffer has 1/divisor of the frame's pixels along each axis: the splat's
-    /// fill rate falls with its square, the resolve reads it bilinearly. Default 2.
+    /// work falls with its square, the resolve reads it bilinearly. Default 2 (the bench
+    /// scene's frame at 1080p on an H100: 3.17 ms at 1, 2.98 at 2, 2.94 at 4).
     pub buffer_divisor: u32,
     /// Irradiance from the photons. Default `energy`.
     pub concentration: Concentration,
