@@ -140,14 +140,16 @@ fn grid_cells_at(c: GridCells, k: i32) -> vec3i {
     return c.lo + vec3i(k % c.count.x, (k / c.count.x) % c.count.y, k / (c.count.x * c.count.y));
 }
 
-// Whether the `k`-th cell of `c` is the first of them with its head (a photon is listed once
-// per head).
-fn grid_first_of_head(c: GridCells, k: i32, level: u32, heads: u32) -> bool {
+// The head of the `k`-th cell of `c` if no earlier cell of `c` has it (a photon is listed
+// once per head), else GRID_NO_HEAD.
+const GRID_NO_HEAD: u32 = 0xffffffffu;
+
+fn grid_listed_head(c: GridCells, k: i32, level: u32, heads: u32) -> u32 {
     let head = grid_head(level, grid_cells_at(c, k), heads);
     for (var j = 0; j < k; j++) {
-        if (grid_head(level, grid_cells_at(c, j), heads) == head) { return false; }
+        if (grid_head(level, grid_cells_at(c, j), heads) == head) { return GRID_NO_HEAD; }
     }
-    return true;
+    return head;
 }
 
 // A u32 that orders as the float `f` does (negative floats' bits complemented, positive

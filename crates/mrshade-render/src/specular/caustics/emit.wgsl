@@ -228,9 +228,8 @@ fn grid_count(index: u32, world: f32) {
     let heads = grid_heads(arrayLength(&grid));
     let cells = grid_cells(p, reach, level, splat_min);
     for (var k = 0; k < cells.count.x * cells.count.y * cells.count.z; k++) {
-        if (grid_first_of_head(cells, k, level, heads)) {
-            atomicAdd(&grid[grid_count_word(grid_head(level, grid_cells_at(cells, k), heads))], 1u);
-        }
+        let head = grid_listed_head(cells, k, level, heads);
+        if (head != GRID_NO_HEAD) { atomicAdd(&grid[grid_count_word(head)], 1u); }
     }
     grid_photons[index] = GridPhoton(vec4f(p, h), vec4f(photon.normal.xyz, world), vec4f(photon.power.rgb, 0.0));
     grid_photon_cells[index] = grid_cells_pack(cells, level);
@@ -362,8 +361,8 @@ fn cs_grid_scatter(@builtin(global_invocation_id) id: vec3u) {
         let level = grid_cells_level(packed);
         let cells = grid_cells_unpack(packed);
         for (var k = 0; k < cells.count.x * cells.count.y * cells.count.z; k++) {
-            if (!grid_first_of_head(cells, k, level, heads)) { continue; }
-            let head = grid_head(level, grid_cells_at(cells, k), heads);
+            let head = grid_listed_head(cells, k, level, heads);
+            if (head == GRID_NO_HEAD) { continue; }
             let slot = atomicAdd(&grid[grid_end_word(head, heads)], 1u);
             if (slot < arrayLength(&grid_entries)) { grid_entries[slot] = index; }
         }

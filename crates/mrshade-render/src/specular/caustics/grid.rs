@@ -23,9 +23,11 @@ pub const GRID_PHOTON_BYTES: u64 = 48;
 pub const GRID_HEADS: u64 = 1 << 18;
 /// Most cells a photon is listed in: three along each axis (`GRID_CELLS_PER_AXIS`).
 pub const GRID_CELLS_PER_PHOTON: u64 = 27;
+/// Bytes of the cells a photon was counted in (`GridCells` packed in a vec4i).
+const GRID_CELLS_BYTES: u64 = 16;
 /// Bytes per photon slot of the grid's buffers: the listed photon, its entries at most, the
-/// cells it was counted in (`GridCells` packed in a vec4i).
-pub const GRID_BYTES_PER_SLOT: u64 = GRID_PHOTON_BYTES + GRID_CELLS_PER_PHOTON * 4 + 16;
+/// cells it was counted in.
+pub const GRID_BYTES_PER_SLOT: u64 = GRID_PHOTON_BYTES + GRID_CELLS_PER_PHOTON * 4 + GRID_CELLS_BYTES;
 /// The largest of the grid's buffers per photon slot (its entries), for the device's binding
 /// limit.
 pub const GRID_ENTRY_BYTES_PER_SLOT: u64 = GRID_CELLS_PER_PHOTON * 4;
@@ -77,7 +79,7 @@ impl PhotonGrid {
             }),
             cells: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("specular/photon_grid/cells"),
-                size: capacity.max(1) * 16,
+                size: capacity.max(1) * GRID_CELLS_BYTES,
                 usage,
                 mapped_at_creation: false,
             }),

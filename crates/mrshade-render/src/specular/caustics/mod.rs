@@ -57,8 +57,17 @@ pub const SUM_WORDS: u64 = 4;
 /// Bytes of the splat's fixed-point sums (both levels and halves) for a frame of `size` and
 /// a fine level of 1/`divisor` of it per axis: 64 bytes a caustic texel.
 pub fn sum_bytes(size: (u32, u32), divisor: u32) -> u64 {
-    let texels = |d: u32| size.0.div_ceil(d) as u64 * size.1.div_ceil(d) as u64;
+    let texels = |d: u32| {
+        let (w, h) = level_size(size, d);
+        w as u64 * h as u64
+    };
     2 * SUM_WORDS * 8 * (texels(divisor) + texels(divisor * COARSE_LEVEL_FACTOR))
+}
+
+/// Texels of a caustic level of 1/`divisor` of a frame of `size` per axis (`level_size` in
+/// splat.wgsl).
+fn level_size(size: (u32, u32), divisor: u32) -> (u32, u32) {
+    (size.0.div_ceil(divisor), size.1.div_ceil(divisor))
 }
 /// Bytes of a group's two indirect draws (what `LightPhotons::landed` keeps of them).
 pub const SPLAT_DRAWS_BYTES: u64 = std::mem::size_of_val(&EMPTY_DRAWS) as u64;
@@ -311,7 +320,7 @@ impl Caustics {
             .into();
         targets.push(landed.as_entire_binding());
         let finish_group = bind::group(device, "specular/caustic_finish", &finish_layout, &targets);
-        let (mut splat_dispatches, mut splat_finish) = (Vec::new(), None);
+        let mut splat_dispatches = Vec::new();
 
         let scene_group =
             bind::group(device, "specular/photons_scene", &emit_scene, &scene_buffers.map(|b| b.as_entire_binding()));
@@ -419,19 +428,18 @@ impl Caustics {
             // wait: the splat reads neither).
             splat_dispatches.push(Dispatch {
                 pipeline: splat.clone(),
-                groups: vec![splat_group.clone()],
+                groups: vec![splat_group],
                 workgroups: [SPLAT_GROUPS, 2, 1],
             });
-            if splat_dispatches.len() == 1 {
-                let (w, h) = (levels[0].rv.texture.width(), levels[0].rv.texture.height());
-                splat_finish = Some(Dispatch {
-                    pipeline: finish.clone(),
-                    groups: vec![splat_group, finish_group.clone()],
-                    workgroups: [w.div_ceil(8), h.div_ceil(8), 1],
-                });
-            }
             groups.push(PhotonGroup { sources, resolution, from_probe, params, photons, draws });
         }
+        // The finish reads the first group's draws (see `landed`) through its splat group.
+        let (w, h) = (levels[0].rv.texture.width(), levels[0].rv.texture.height());
+        let splat_finish = splat_dispatches.first().map(|d| Dispatch {
+            pipeline: finish,
+            groups: vec![d.groups[0].clone(), finish_group],
+            workgroups: [w.div_ceil(8), h.div_ceil(8), 1],
+        });
         let mut then = size_dispatches;
         then.extend(splat_dispatches);
         then.extend(splat_finish);
@@ -542,7 +550,7 @@ impl CausticBuffer {
             wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC;
         let half = wgpu::TextureFormat::Rgba16Float;
         let level = |name: &str, divisor: u32| {
-            let size = (size.0.div_ceil(divisor), size.1.div_ceil(divisor));
+            let size = level_size(size, divisor);
             Differential {
                 rv: Target::new_2d(device, &format!("specular/{name}_rv"), size, half, usage),
                 r: Target::new_2d(device, &format!("specular/{name}_r"), size, half, usage),

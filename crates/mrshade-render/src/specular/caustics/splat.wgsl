@@ -12,8 +12,8 @@
 // size covers few texels.
 //
 // A compute pass, not the rasteriser (the rays' side job runs it after the photons' sizes):
-// eight invocations take a photon of its level's list at a time and stride over the texels
-// of the quad's box (a texel counts where its centre's ray meets the quad, as the
+// a workgroup takes a photon of its level's list at a time, its invocations stride over the
+// texels of the quad's box (a texel counts where its centre's ray meets the quad, as the
 // rasteriser's coverage), and add to the texels in 64-bit fixed point (FIXED_ONE units):
 // sums that do not depend on the order the photons come in, so that both worlds' sums of
 // the same photons are the same to the bit. cs_finish turns them into the two levels'
@@ -67,23 +67,22 @@ fn sum_take(word: u32) -> f32 {
     return f32(atomicExchange(&sums[word], 0lu)) / FIXED_ONE;
 }
 
-// Workgroups per level, and invocations per photon: a workgroup takes eight photons of its
-// level's list at a time, every SPLAT_GROUPS · 8-th (mirrors caustics::SPLAT_GROUPS). Most
-// quads cover 4 to 30 texels: a whole workgroup per photon left most of its lanes idle.
+// Workgroups per level: each takes every SPLAT_GROUPS-th photon of its level's list (mirrors
+// caustics::SPLAT_GROUPS). Its 64 invocations add to neighbouring texels of one quad, whose
+// sums lie side by side; 8 or 32 invocations per photon, fewer idle on small quads, spread a
+// warp's atomics over several quads and were slower (1080p, H100).
 const SPLAT_GROUPS: u32 = 4096u;
-const PHOTON_LANES: u32 = 64u;
+const SPLAT_LANES: u32 = 64u;
 
 @compute @workgroup_size(64)
-fn cs_splat(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) local_index: u32) {
+fn cs_splat(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) lane: u32) {
     let level = group.y;
     let count = splat_draws[level].x / 6u;
     let size = level_size(level);
     let divisor = f32(caustics.info.w * select(1u, COARSE_LEVEL_FACTOR, level == 1u));
     let last_pixel = vec2i(frame.size.xy) - 1;
     let eye = frame.camera_position.xyz;
-    let lane = local_index % PHOTON_LANES;
-    let photons_at_once = 64u / PHOTON_LANES;
-    for (var i = group.x * photons_at_once + local_index / PHOTON_LANES; i < count; i += SPLAT_GROUPS * photons_at_once) {
+    for (var i = group.x; i < count; i += SPLAT_GROUPS) {
         let index = splat_list[level * photon_slots() + i];
         let photon = photons[index];
         let h = photon.normal.w;
@@ -112,7 +111,7 @@ fn cs_splat(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index
         let kind = (index / (caustics.info.x * caustics.info.x)) % PHOTON_KINDS;
         let half = select(0u, 1u, kind >= 2u);
         let to_centre = dot(centre - eye, n);
-        for (var t = lane; t < texels; t += PHOTON_LANES) {
+        for (var t = lane; t < texels; t += SPLAT_LANES) {
             let texel = vec2u(first) + vec2u(t % width, t / width);
             // This texel's centre on the full-size G-buffer: the camera's surface there, and
             // the point where the ray to it meets the quad's plane (at `along` of the way).
