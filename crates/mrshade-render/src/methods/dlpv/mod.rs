@@ -59,6 +59,9 @@ const VOLUMES: u64 = 3;
 
 /// Bytes of one cell of one float volume: four coefficients × three channels.
 const CELL_BYTES: u64 = 48;
+/// Bytes of one cell of one source's scratch volume: four half-float coefficients × three
+/// channels (propagate.wgsl).
+pub const SCRATCH_CELL_BYTES: u64 = 24;
 /// Fixed-point headroom: all injected flux of a source, times the largest coefficient
 /// magnitude, stays below 2³¹ units.
 const FIXED_POINT_RANGE: f32 = (1u32 << 29) as f32;
@@ -120,6 +123,22 @@ pub fn propagate_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     )
 }
 
+/// Per dispatch of seeding (0) and propagation (1 …= `max_steps`), how many dispatches
+/// before it added to the sums (propagate.wgsl `adds_to_sums`: the seed, every even step, the
+/// last), and at `max_steps + 1` how many did in all: the sum buffer a dispatch reads is
+/// this count's parity.
+pub fn sum_updates(max_steps: u32) -> Vec<usize> {
+    let adds = |k: u32| k.is_multiple_of(2) || k == max_steps;
+    let mut count = 0;
+    let mut out = Vec::with_capacity(max_steps as usize + 2);
+    for k in 0..=max_steps {
+        out.push(count);
+        count += adds(k) as usize;
+    }
+    out.push(count);
+    out
+}
+
 /// Halves the maps until every set's texels fit one buffer binding.
 pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
     let dlpv = &mut settings.dlpv;
@@ -138,7 +157,10 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             "dlpv probe-light RSMs (2 × dlpv.probe_lights × dlpv.probe_rsm_resolution²)",
             rsm::bytes(2 * d.probe_lights as u64, d.probe_rsm_resolution),
         ),
-        ("dlpv volumes (dlpv.resolution³)", cells * CELL_BYTES * (SOURCES as u64 * 3 + 2 * VOLUMES)),
+        (
+            "dlpv volumes (dlpv.resolution³)",
+            cells * (SOURCES as u64 * (CELL_BYTES + 2 * SCRATCH_CELL_BYTES) + 2 * VOLUMES * CELL_BYTES),
+        ),
     ]
 }
 
@@ -299,7 +321,8 @@ impl DlpvMethod {
             })
         };
         let volume_bytes = cells as u64 * CELL_BYTES;
-        let scratch = ["a", "b"].map(|n| buffer(&format!("dlpv/scratch_{n}"), SOURCES as u64 * volume_bytes));
+        let scratch = ["a", "b"]
+            .map(|n| buffer(&format!("dlpv/scratch_{n}"), SOURCES as u64 * cells as u64 * SCRATCH_CELL_BYTES));
         // Every dispatch reads one sum buffer and writes the other. Adding into one read-write
         // buffer from dispatch to dispatch raced on the H200 (lavapipe runs dispatches in
         // order and hid it), and so would two dispatches writing the same scratch buffer.
@@ -308,11 +331,14 @@ impl DlpvMethod {
         let seed = compute_pipeline_entry(device, "dlpv/seed", PROPAGATE_SHADER, "seed", &[&propagate_layout]);
         let propagate =
             compute_pipeline_entry(device, "dlpv/propagate", PROPAGATE_SHADER, "propagate", &[&propagate_layout]);
-        // Dispatch k reads scratch and sums k mod 2 and writes the others (a seed reads no
-        // scratch: the other one stands in for its unused `source`).
+        // Dispatch k reads scratch k mod 2 and writes the other (a seed reads no scratch: the
+        // other one stands in for its unused `source`). Sums: the seed and every dispatch
+        // that adds to them (`sum_updates`) read the buffer the one before wrote.
+        let updates = sum_updates(max_steps);
         let dispatches: Vec<wgpu::BindGroup> = (0..=max_steps as usize)
             .map(|k| {
                 let (read, write) = (k % 2, 1 - k % 2);
+                let sums_read = updates[k] % 2;
                 bind::group(
                     device,
                     &format!("dlpv/step{k}_group"),
@@ -322,13 +348,13 @@ impl DlpvMethod {
                         injected.as_entire_binding(),
                         scratch[read].as_entire_binding(),
                         scratch[write].as_entire_binding(),
-                        sums[read].as_entire_binding(),
-                        sums[write].as_entire_binding(),
+                        sums[sums_read].as_entire_binding(),
+                        sums[1 - sums_read].as_entire_binding(),
                     ],
                 )
             })
             .collect();
-        let volumes = sums[(max_steps as usize + 1) % 2].clone();
+        let volumes = sums[updates[max_steps as usize + 1] % 2].clone();
         let first_sums = sums[0].clone();
 
         // The per-pixel merge.
@@ -340,7 +366,7 @@ impl DlpvMethod {
             gbuffer,
             &scene.materials.buffer,
         );
-        // 0: the three volumes; 1–5: the probe's lights, their layers, maps, pairs and counts
+        // 0: the three volumes; 1–3: the probe's lights' lookups, their maps' heights and counts
         // (for the virtual pixels' visibility).
         let mut entries = vec![bind::storage(0, cs)];
         entries.extend(ProbeMaps::layout_entries(1));
@@ -430,7 +456,7 @@ impl LightTransport for DlpvMethod {
             self.probe.record(rec, rasterizer);
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);
-            let cells = self.params.info.y;
+            let res = self.params.info.x;
             rec.compute(Self::INJECT_LABEL, |pass| {
                 pass.set_pipeline(&self.inject);
                 for set in self.sets.iter().filter(|s| s.pairs > 0) {
@@ -443,8 +469,8 @@ impl LightTransport for DlpvMethod {
                 for (k, group) in self.dispatches.iter().enumerate() {
                     pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
-                    // x: cells; y: accumulated volume × channel.
-                    pass.dispatch_workgroups(cells.div_ceil(64), 3 * VOLUMES as u32, 1);
+                    // x, y: cells; z: cells × accumulated volume × channel (propagate.wgsl).
+                    pass.dispatch_workgroups(res / 4, res / 4, res / 4 * 3 * VOLUMES as u32);
                 }
             });
         }
