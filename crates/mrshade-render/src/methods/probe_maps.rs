@@ -8,7 +8,8 @@
 use super::rsm::RsmPass;
 use crate::raster::Rasterizer;
 use crate::scene_gpu::{GpuLight, GpuScene, ShadowLayer, pack_lights};
-use glam::{UVec4, Vec3};
+use bytemuck::{Pod, Zeroable};
+use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::ShadowSettings;
 use mrshade_gpu::timing::Recorder;
@@ -22,8 +23,59 @@ pub struct ProbeSet {
     pub lights: Vec<Light>,
     /// Their `GpuLight`s.
     pub buffer: wgpu::Buffer,
-    /// `clip_from_world` of their layers (the per-pixel passes look up visibility).
-    pub clip_from_world: wgpu::Buffer,
+}
+
+/// One probe light as the per-pixel passes read it (`ProbeLookup` in probe_maps.wgsl): all
+/// that a shadow test of its maps needs, in the fewest words and operations. Those passes
+/// test every pixel against every light (32 by default); with the light, its layer's
+/// `clip_from_world` and its pair read and combined in the loop, the test was two thirds of
+/// `dlpv`'s merge.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct ProbeLookup {
+    /// Continuous texel column of world point p in the light's maps: ⟨s, (p, 1)⟩.
+    pub s: Vec4,
+    /// Its texel row: ⟨t, (p, 1)⟩.
+    pub t: Vec4,
+    /// xyz: unit direction toward the light; w: the maps' bias, half a texel (m).
+    pub toward_bias: Vec4,
+    /// rgb: intensity × colour.
+    pub intensity: Vec4,
+    /// Real-only layer, virtual-only layer, the light's angular radius (f32 bits), 0.
+    pub maps: UVec4,
+}
+
+/// The lookups of `pairs` (`layer_pairs`, w the angular radius) of `lights` whose maps of
+/// side `resolution` are `layers` (`shadow_resolution`: the shadow maps' side, to which
+/// `pack_lights` sized each light's texel).
+pub fn probe_lookups(
+    lights: &[GpuLight],
+    layers: &[ShadowLayer],
+    pairs: &[UVec4],
+    resolution: u32,
+    shadow_resolution: u32,
+) -> Vec<ProbeLookup> {
+    let res = resolution as f32;
+    pairs
+        .iter()
+        .map(|pair| {
+            let light = &lights[pair.z as usize];
+            let m = layers[pair.x as usize].clip_from_world;
+            // Orthographic (clip w = 1): texel = ((ndc.x + 1) / 2, (1 − ndc.y) / 2) × side.
+            debug_assert_eq!(m.row(3), Vec4::W, "a probe light's map is orthographic");
+            let toward = -light.direction_real.truncate();
+            // Half a texel of the map, whose side is the light's shadow texel size at unit
+            // distance × the shadow maps' side (pack_lights).
+            let bias = 0.5 * light.cone.z * shadow_resolution as f32 / res;
+            ProbeLookup {
+                s: (m.row(0) + Vec4::W) * (0.5 * res),
+                t: (Vec4::W - m.row(1)) * (0.5 * res),
+                toward_bias: toward.extend(bias),
+                intensity: light.intensity,
+                maps: UVec4::new(pair.x, pair.y, pair.w, 0),
+            }
+        })
+        .collect()
 }
 
 /// The probe's lights and their layers: maps as wide as the cube's bounding sphere (where
@@ -60,7 +112,7 @@ impl ProbeSet {
         cube: (Vec3, Vec3),
         scene_box: Option<(Vec3, Vec3)>,
         shadows: &ShadowSettings,
-    ) -> (Self, Vec<ShadowLayer>) {
+    ) -> (Self, Vec<GpuLight>, Vec<ShadowLayer>) {
         let (gpu_lights, layers) = probe_layers(&lights, cube, scene_box, shadows);
         let storage = |label: &str, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -69,28 +121,24 @@ impl ProbeSet {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             })
         };
-        let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
         let set = Self {
             lights,
             buffer: storage(format!("{label}/probe_lights").as_str(), bytemuck::cast_slice(&gpu_lights)),
-            clip_from_world: storage(format!("{label}/probe_clip_from_world").as_str(), bytemuck::cast_slice(&clips)),
         };
-        (set, layers)
+        (set, gpu_lights, layers)
     }
 
-    /// Moves the maps to cover `cube`; the layers for the RSM pass.
+    /// Moves the maps to cover `cube`; the lights and the layers for the RSM pass.
     pub fn follow(
         &self,
         queue: &wgpu::Queue,
         cube: (Vec3, Vec3),
         scene_box: Option<(Vec3, Vec3)>,
         shadows: &ShadowSettings,
-    ) -> Vec<ShadowLayer> {
+    ) -> (Vec<GpuLight>, Vec<ShadowLayer>) {
         let (gpu_lights, layers) = probe_layers(&self.lights, cube, scene_box, shadows);
-        let clips: Vec<glam::Mat4> = layers.iter().map(|l| l.clip_from_world).collect();
         queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&gpu_lights));
-        queue.write_buffer(&self.clip_from_world, 0, bytemuck::cast_slice(&clips));
-        layers
+        (gpu_lights, layers)
     }
 }
 
@@ -117,15 +165,21 @@ pub fn bounding_radius(bounds: Option<(Vec3, Vec3)>) -> f32 {
 }
 
 /// The probe's lights with their maps, for shadowing the probe's light per pixel
-/// (shaders/lib/probe_maps.wgsl reads `resources()` as its five bindings).
+/// (shaders/lib/probe_maps.wgsl reads `resources()` as its three bindings).
 pub struct ProbeMaps {
     /// The lights and their maps; `None` without a probe or with no lights asked for.
     drawn: Option<(ProbeSet, RsmPass)>,
     /// Per light: (real-only layer, virtual-only layer, light, its angular radius as f32 bits).
+    pair_list: Vec<UVec4>,
+    /// The same on the GPU (`dlpv`'s injection reads them).
     pairs: wgpu::Buffer,
+    /// Per light: its `ProbeLookup` (the per-pixel passes read them).
+    lookups: wgpu::Buffer,
+    /// The shadow maps' side (pack_lights sizes the lights' texels to it).
+    shadow_resolution: u32,
     /// (lights, map side, shadow-map resolution, 0).
     info: wgpu::Buffer,
-    /// Stands in for the lights, matrices and texels when there are none.
+    /// Stands in for the maps' heights when there are none.
     unused: wgpu::Buffer,
     /// Number of pairs (one per light).
     count: u32,
@@ -152,16 +206,18 @@ impl ProbeMaps {
         let spreads: Vec<f32> = lights.iter().map(|(_, spread)| *spread).collect();
         let lights: Vec<Light> = lights.into_iter().map(|(light, _)| light).collect();
         let drawn = (!lights.is_empty()).then(|| {
-            let (set, layers) = ProbeSet::new(device, label, lights, cube, scene_box, shadows);
+            let (set, gpu_lights, layers) = ProbeSet::new(device, label, lights, cube, scene_box, shadows);
             let rsm = RsmPass::new(ctx, rasterizer, scene, &set.buffer, &layers, resolution, shadows.resolution, false);
             let pairs = layer_pairs(&layers);
             let pairs =
                 pairs.into_iter().map(|p| UVec4 { w: spreads[p.z as usize].to_bits(), ..p }).collect::<Vec<_>>();
-            (set, rsm, pairs)
+            let lookups = probe_lookups(&gpu_lights, &layers, &pairs, resolution, shadows.resolution);
+            (set, rsm, pairs, lookups)
         });
-        let pairs = drawn.as_ref().map_or_else(Vec::new, |d| d.2.clone());
+        let (pairs, mut lookups) = drawn.as_ref().map_or_else(Default::default, |d| (d.2.clone(), d.3.clone()));
         let mut pair_words = pairs.clone();
         pair_words.resize(pairs.len().max(1), UVec4::ZERO);
+        lookups.resize(pairs.len().max(1), ProbeLookup::zeroed());
         let init = |name: &str, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label}/{name}")),
@@ -170,12 +226,20 @@ impl ProbeMaps {
             })
         };
         let pairs_buffer = init("probe_pairs", bytemuck::cast_slice(&pair_words), wgpu::BufferUsages::STORAGE);
+        let lookups = init(
+            "probe_lookups",
+            bytemuck::cast_slice(&lookups),
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        );
         let info = UVec4::new(pairs.len() as u32, resolution, shadows.resolution, 0);
         let info = init("probe_info", bytemuck::bytes_of(&info), wgpu::BufferUsages::UNIFORM);
         let unused = init("no_probe_lights", &[0; 256], wgpu::BufferUsages::STORAGE);
         Self {
-            drawn: drawn.map(|(set, rsm, _)| (set, rsm)),
+            drawn: drawn.map(|(set, rsm, _, _)| (set, rsm)),
+            pair_list: pairs.clone(),
             pairs: pairs_buffer,
+            lookups,
+            shadow_resolution: shadows.resolution,
             info,
             unused,
             count: pairs.len() as u32,
@@ -192,8 +256,10 @@ impl ProbeMaps {
         shadows: &ShadowSettings,
     ) {
         if let Some((set, rsm)) = &mut self.drawn {
-            let layers = set.follow(queue, cube, scene_box, shadows);
+            let (gpu_lights, layers) = set.follow(queue, cube, scene_box, shadows);
             rsm.set_layers(queue, &layers);
+            let lookups = probe_lookups(&gpu_lights, &layers, &self.pair_list, self.resolution, self.shadow_resolution);
+            queue.write_buffer(&self.lookups, 0, bytemuck::cast_slice(&lookups));
         }
     }
 
@@ -212,30 +278,17 @@ impl ProbeMaps {
     }
 
     /// The layout entries of `resources()`, bindings `first`… (compute).
-    pub fn layout_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; 5] {
+    pub fn layout_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; 3] {
         let cs = wgpu::ShaderStages::COMPUTE;
-        [
-            bind::storage(first, cs),
-            bind::storage(first + 1, cs),
-            bind::storage(first + 2, cs),
-            bind::storage(first + 3, cs),
-            bind::uniform(first + 4, cs),
-        ]
+        [bind::storage(first, cs), bind::storage(first + 1, cs), bind::uniform(first + 2, cs)]
     }
 
-    /// The lights, their layers' `clip_from_world`, the maps' heights toward their lights, the
-    /// pairs and the info.
-    pub fn resources(&self) -> [wgpu::BindingResource<'_>; 5] {
-        let (lights, clips, heights) = match &self.drawn {
-            Some((set, rsm)) => (&set.buffer, &set.clip_from_world, &rsm.heights),
-            None => (&self.unused, &self.unused, &self.unused),
+    /// The lights' lookups, the maps' heights toward their lights, and the info.
+    pub fn resources(&self) -> [wgpu::BindingResource<'_>; 3] {
+        let heights = match &self.drawn {
+            Some((_, rsm)) => &rsm.heights,
+            None => &self.unused,
         };
-        [
-            lights.as_entire_binding(),
-            clips.as_entire_binding(),
-            heights.as_entire_binding(),
-            self.pairs.as_entire_binding(),
-            self.info.as_entire_binding(),
-        ]
+        [self.lookups.as_entire_binding(), heights.as_entire_binding(), self.info.as_entire_binding()]
     }
 }

@@ -24,11 +24,9 @@
 // The accumulated V_ρ, V_Δ, V_μ one after the other, each channel-major.
 @group(1) @binding(0) var<storage, read> volumes: array<vec4f>;
 // The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
-@group(1) @binding(1) var<storage, read> probe_lights: array<Light>;
-@group(1) @binding(2) var<storage, read> probe_clip_from_world: array<mat4x4f>;
-@group(1) @binding(3) var<storage, read> probe_heights: array<f32>;
-@group(1) @binding(4) var<storage, read> probe_pairs: array<vec4u>;
-@group(1) @binding(5) var<uniform> probe_info: vec4u;
+@group(1) @binding(1) var<storage, read> probe_lookups: array<ProbeLookup>;
+@group(1) @binding(2) var<storage, read> probe_heights: array<f32>;
+@group(1) @binding(3) var<uniform> probe_info: vec4u;
 
 // Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 

@@ -37,11 +37,9 @@
 @group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
 @group(3) @binding(3) var env_sampler: sampler;
 // The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
-@group(3) @binding(4) var<storage, read> probe_lights: array<Light>;
-@group(3) @binding(5) var<storage, read> probe_clip_from_world: array<mat4x4f>;
-@group(3) @binding(6) var<storage, read> probe_heights: array<f32>;
-@group(3) @binding(7) var<storage, read> probe_pairs: array<vec4u>;
-@group(3) @binding(8) var<uniform> probe_info: vec4u;
+@group(3) @binding(4) var<storage, read> probe_lookups: array<ProbeLookup>;
+@group(3) @binding(5) var<storage, read> probe_heights: array<f32>;
+@group(3) @binding(6) var<uniform> probe_info: vec4u;
 
 // Diameter-to-length ratio of the cone that holds a GGX lobe of `roughness` (α = r²; the
 // lobe's half width is about atan α), at least a voxel's worth over the volume.
