@@ -50,7 +50,7 @@ fn volume_span(v: VolumeParams, o: vec3f, d: vec3f) -> vec2f {
 // A sample of one solution at level `lod` seen along unit `d`: the voxels themselves at level
 // 0, above it per axis the chain (mips.wgsl) of the way `d` travels along it (its half of the
 // texture along x, Volume::chains), with weights w = |d| / Σ|d|, an axis whose weight is
-// negligible not read. Opacity is the product of the axes' transmittances raised to their
+// negligible not read; its reads (VolumeFetch), which volume_sample combines. Opacity is the product of the axes' transmittances raised to their
 // weights, 1 − Π (1 − α_a)^w_a: a wall that the cone crosses obliquely (opaque along its
 // normal, thin edge-on) stops it, where a weighted mean of the opacities let half the probe
 // through it at 45°; a blob equally opaque along all axes keeps its opacity. Radiance is the
@@ -63,8 +63,7 @@ fn sample_volume(
     uvw: vec3f,
     lod: f32,
     d: vec3f,
-) -> vec4f {
-    if (lod <= 0.0) { return textureSampleLevel(base, volume_sampler, uvw, 0.0); }
+) -> VolumeFetch {
     let w = abs(d) / (abs(d.x) + abs(d.y) + abs(d.z));
     let level = max(lod - 1.0, 0.0);
     // Kept half a texel of the coarser level it blends inside its half of the texture, so that
@@ -72,26 +71,54 @@ fn sample_volume(
     // as the sampler clamps it on the other axes).
     let coarser = f32(max(textureDimensions(y).y >> u32(ceil(level)), 1u));
     let u = clamp(uvw.x, 0.5 / coarser, 1.0 - 0.5 / coarser);
-    var colour = vec3f(0.0);
-    var opacity = 0.0;
-    var log_transmit = 0.0;
-    for (var a = 0u; a < 3u; a++) {
-        if (w[a] < 0.03) { continue; }
-        let at = vec3f(0.5 * (u + select(0.0, 1.0, d[a] < 0.0)), uvw.yz);
-        var s: vec4f;
-        switch a {
-            case 0u: { s = textureSampleLevel(x, volume_sampler, at, level); }
-            case 1u: { s = textureSampleLevel(y, volume_sampler, at, level); }
-            default: { s = textureSampleLevel(z, volume_sampler, at, level); }
-        }
-        colour += w[a] * s.rgb;
-        opacity += w[a] * s.a;
-        log_transmit += w[a] * log2(max(1.0 - s.a, 1e-6));
-    }
-    let alpha = 1.0 - exp2(log_transmit);
-    let coarse = vec4f(select(vec3f(0.0), colour / opacity * alpha, opacity > 1e-6), alpha);
-    if (lod >= 1.0) { return coarse; }
-    return mix(textureSampleLevel(base, volume_sampler, uvw, 0.0), coarse, lod);
+    let way = 0.5 * (u + select(vec3f(0.0), vec3f(1.0), d < vec3f(0.0)));
+    let read = (w >= vec3f(AXIS_WEIGHT_READ)) & vec3<bool>(lod > 0.0);
+    var out = VolumeFetch(vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), w, lod);
+    if (lod < 1.0) { out.base = textureSampleLevel(base, volume_sampler, uvw, 0.0); }
+    if (read.x) { out.x = textureSampleLevel(x, volume_sampler, vec3f(way.x, uvw.yz), level); }
+    if (read.y) { out.y = textureSampleLevel(y, volume_sampler, vec3f(way.y, uvw.yz), level); }
+    if (read.z) { out.z = textureSampleLevel(z, volume_sampler, vec3f(way.z, uvw.yz), level); }
+    return out;
+}
+
+// An axis whose weight is below this is not read.
+const AXIS_WEIGHT_READ: f32 = 0.03;
+
+// The reads of one sample_volume, all issued before any is used (a step's reads, up to four
+// a solution, then wait on one latency, not four in turn), and what combines them.
+struct VolumeFetch {
+    base: vec4f,
+    x: vec4f,
+    y: vec4f,
+    z: vec4f,
+    w: vec3f,
+    lod: f32,
+}
+
+struct AxisSum {
+    weighted: vec4f,
+    log_transmit: f32,
+}
+
+fn add_axis(sum: ptr<function, AxisSum>, w: f32, s: vec4f) {
+    if (w < AXIS_WEIGHT_READ) { return; }
+    (*sum).weighted += vec4f(w * s.rgb, w * s.a);
+    (*sum).log_transmit += w * log2(max(1.0 - s.a, 1e-6));
+}
+
+// The sample of sample_volume's reads.
+fn volume_sample(f: VolumeFetch) -> vec4f {
+    if (f.lod <= 0.0) { return f.base; }
+    // (Σ w·colour, Σ w·opacity), Σ w·log₂ transmittance over the axes read, x, y, z in turn.
+    var sum = AxisSum(vec4f(0.0), 0.0);
+    add_axis(&sum, f.w.x, f.x);
+    add_axis(&sum, f.w.y, f.y);
+    add_axis(&sum, f.w.z, f.z);
+    let alpha = 1.0 - exp2(sum.log_transmit);
+    let opacity = sum.weighted.a;
+    let coarse = vec4f(select(vec3f(0.0), sum.weighted.rgb / opacity * alpha, opacity > 1e-6), alpha);
+    if (f.lod >= 1.0) { return coarse; }
+    return mix(f.base, coarse, f.lod);
 }
 
 // Side of the voxels a cone's samples read, per cone diameter. A sample blurs its level's
@@ -180,15 +207,17 @@ fn march(
             t += step;
             continue;
         }
-        var s_rv: vec4f;
-        var s_r: vec4f;
+        var f_rv: VolumeFetch;
+        var f_r: VolumeFetch;
         if (inner) {
-            s_rv = sample_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
-            s_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
+            f_rv = sample_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
+            f_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
         } else {
-            s_rv = sample_volume(outer_rv, outer_rv_x, outer_rv_y, outer_rv_z, uvw, lod, d);
-            s_r = sample_volume(outer_r, outer_r_x, outer_r_y, outer_r_z, uvw, lod, d);
+            f_rv = sample_volume(outer_rv, outer_rv_x, outer_rv_y, outer_rv_z, uvw, lod, d);
+            f_r = sample_volume(outer_r, outer_r_x, outer_r_y, outer_r_z, uvw, lod, d);
         }
+        var s_rv = volume_sample(f_rv);
+        var s_r = volume_sample(f_r);
         // The most opaque single sample is one sample's (probe_occlusion), however long the
         // step; so is what a sample adds beyond it.
         (*out).correlated_change += beyond(s_rv, (*out).peak.x) - beyond(s_r, (*out).peak.y);

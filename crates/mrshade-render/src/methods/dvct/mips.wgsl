@@ -25,32 +25,38 @@
 // Front-to-back "over" of premultiplied samples.
 fn over(front: vec4f, back: vec4f) -> vec4f { return front + (1.0 - front.a) * back; }
 
-// The parent of `children` seen by a cone travelling along `axis`, towards + unless
-// `towards_low` (its front child then the one with the higher coordinate). Child k sits at
-// (k & 1, (k >> 1) & 1, k >> 2); along axis a, pairs differ in bit a.
-fn parent(children: array<vec4f, 8>, axis: u32, towards_low: bool) -> vec4f {
-    let bit = 1u << axis;
-    var sum = vec4f(0.0);
-    for (var k = 0u; k < 8u; k++) {
-        if ((k & bit) != 0u) { continue; }
-        let low = children[k];
-        let high = children[k | bit];
-        sum += select(over(low, high), over(high, low), towards_low);
+// The parent of the eight children of `finer` from `first` seen by a cone travelling along
+// `axis`, towards + unless `towards_low` (its front child then the one with the higher
+// coordinate): its four columns along the axis composited front to back, averaged. Child k
+// sits at (k & 1, (k >> 1) & 1, k >> 2); along axis a, the columns' pairs differ in bit a.
+// Written out, the eight reads first: with the children in an array filled and indexed in
+// loops, the reads waited on one another.
+fn parent(finer: texture_3d<f32>, first: vec3u, axis: u32, towards_low: bool) -> vec4f {
+    let c0 = textureLoad(finer, child(first, 0u), 0);
+    let c1 = textureLoad(finer, child(first, 1u), 0);
+    let c2 = textureLoad(finer, child(first, 2u), 0);
+    let c3 = textureLoad(finer, child(first, 3u), 0);
+    let c4 = textureLoad(finer, child(first, 4u), 0);
+    let c5 = textureLoad(finer, child(first, 5u), 0);
+    let c6 = textureLoad(finer, child(first, 6u), 0);
+    let c7 = textureLoad(finer, child(first, 7u), 0);
+    let t = towards_low;
+    var sum: vec4f;
+    switch axis {
+        case 0u: { sum = pair(c0, c1, t) + pair(c2, c3, t) + pair(c4, c5, t) + pair(c6, c7, t); }
+        case 1u: { sum = pair(c0, c2, t) + pair(c1, c3, t) + pair(c4, c6, t) + pair(c5, c7, t); }
+        default: { sum = pair(c0, c4, t) + pair(c1, c5, t) + pair(c2, c6, t) + pair(c3, c7, t); }
     }
     return sum * 0.25;
 }
 
+// A column of two children along the cone's axis, composited as the cone meets them.
+fn pair(low: vec4f, high: vec4f, towards_low: bool) -> vec4f {
+    return select(over(low, high), over(high, low), towards_low);
+}
+
 // The texel of child k of a parent, `first` the one with the lowest coordinates.
 fn child(first: vec3u, k: u32) -> vec3u { return first + vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u); }
-
-// The eight children of a parent.
-fn children_of(finer: texture_3d<f32>, first: vec3u) -> array<vec4f, 8> {
-    var c: array<vec4f, 8>;
-    for (var k = 0u; k < 8u; k++) {
-        c[k] = textureLoad(finer, child(first, k), 0);
-    }
-    return c;
-}
 
 // The parent an invocation writes: where it lies in the volume at its level, and the way its
 // cones travel (texels in the second half along x: towards −).
@@ -71,9 +77,9 @@ fn cs_main(@builtin(global_invocation_id) texel: vec3u) {
     let c = cell(texel);
     // The finer level holds its two ways at the same offset: twice the side.
     let first = vec3u(2u * c.id.x + select(0u, 2u * textureDimensions(out_y).y, c.towards_low), 2u * c.id.yz);
-    textureStore(out_x, texel, parent(children_of(finer_x, first), 0u, c.towards_low));
-    textureStore(out_y, texel, parent(children_of(finer_y, first), 1u, c.towards_low));
-    textureStore(out_z, texel, parent(children_of(finer_z, first), 2u, c.towards_low));
+    textureStore(out_x, texel, parent(finer_x, first, 0u, c.towards_low));
+    textureStore(out_y, texel, parent(finer_y, first, 1u, c.towards_low));
+    textureStore(out_z, texel, parent(finer_z, first, 2u, c.towards_low));
 }
 
 // How much of a surface's light a cone travelling along unit `e` sees, the surface sending it
