@@ -32,20 +32,13 @@ fn over(front: vec4f, back: vec4f) -> vec4f { return front + (1.0 - front.a) * b
 // Written out, the eight reads first: with the children in an array filled and indexed in
 // loops, the reads waited on one another.
 fn parent(finer: texture_3d<f32>, first: vec3u, axis: u32, towards_low: bool) -> vec4f {
-    let c0 = textureLoad(finer, child(first, 0u), 0);
-    let c1 = textureLoad(finer, child(first, 1u), 0);
-    let c2 = textureLoad(finer, child(first, 2u), 0);
-    let c3 = textureLoad(finer, child(first, 3u), 0);
-    let c4 = textureLoad(finer, child(first, 4u), 0);
-    let c5 = textureLoad(finer, child(first, 5u), 0);
-    let c6 = textureLoad(finer, child(first, 6u), 0);
-    let c7 = textureLoad(finer, child(first, 7u), 0);
+    let c = children(finer, first);
     let t = towards_low;
     var sum: vec4f;
     switch axis {
-        case 0u: { sum = pair(c0, c1, t) + pair(c2, c3, t) + pair(c4, c5, t) + pair(c6, c7, t); }
-        case 1u: { sum = pair(c0, c2, t) + pair(c1, c3, t) + pair(c4, c6, t) + pair(c5, c7, t); }
-        default: { sum = pair(c0, c4, t) + pair(c1, c5, t) + pair(c2, c6, t) + pair(c3, c7, t); }
+        case 0u: { sum = pair(c.c0, c.c1, t) + pair(c.c2, c.c3, t) + pair(c.c4, c.c5, t) + pair(c.c6, c.c7, t); }
+        case 1u: { sum = pair(c.c0, c.c2, t) + pair(c.c1, c.c3, t) + pair(c.c4, c.c6, t) + pair(c.c5, c.c7, t); }
+        default: { sum = pair(c.c0, c.c4, t) + pair(c.c1, c.c5, t) + pair(c.c2, c.c6, t) + pair(c.c3, c.c7, t); }
     }
     return sum * 0.25;
 }
@@ -57,6 +50,31 @@ fn pair(low: vec4f, high: vec4f, towards_low: bool) -> vec4f {
 
 // The texel of child k of a parent, `first` the one with the lowest coordinates.
 fn child(first: vec3u, k: u32) -> vec3u { return first + vec3u(k & 1u, (k >> 1u) & 1u, k >> 2u); }
+
+// The eight children of a parent in `finer`, child k in ck, all read before any is used.
+struct Children {
+    c0: vec4f,
+    c1: vec4f,
+    c2: vec4f,
+    c3: vec4f,
+    c4: vec4f,
+    c5: vec4f,
+    c6: vec4f,
+    c7: vec4f,
+}
+
+fn children(finer: texture_3d<f32>, first: vec3u) -> Children {
+    return Children(
+        textureLoad(finer, child(first, 0u), 0),
+        textureLoad(finer, child(first, 1u), 0),
+        textureLoad(finer, child(first, 2u), 0),
+        textureLoad(finer, child(first, 3u), 0),
+        textureLoad(finer, child(first, 4u), 0),
+        textureLoad(finer, child(first, 5u), 0),
+        textureLoad(finer, child(first, 6u), 0),
+        textureLoad(finer, child(first, 7u), 0),
+    );
+}
 
 // The parent an invocation writes: where it lies in the volume at its level, and the way its
 // cones travel (texels in the second half along x: towards −).
@@ -113,30 +131,24 @@ fn cs_base(@builtin(global_invocation_id) texel: vec3u) {
     let first = 2u * c.id;
     let t = c.towards_low;
     // Each child, and its normal's components along the way.
-    let v0 = textureLoad(finer_x, child(first, 0u), 0);
-    let v1 = textureLoad(finer_x, child(first, 1u), 0);
-    let v2 = textureLoad(finer_x, child(first, 2u), 0);
-    let v3 = textureLoad(finer_x, child(first, 3u), 0);
-    let v4 = textureLoad(finer_x, child(first, 4u), 0);
-    let v5 = textureLoad(finer_x, child(first, 5u), 0);
-    let v6 = textureLoad(finer_x, child(first, 6u), 0);
-    let v7 = textureLoad(finer_x, child(first, 7u), 0);
+    let v = children(finer_x, first);
+    let m = children(normals, first);
     let way = select(1.0, -1.0, t);
-    let n0 = way * textureLoad(normals, child(first, 0u), 0).xyz;
-    let n1 = way * textureLoad(normals, child(first, 1u), 0).xyz;
-    let n2 = way * textureLoad(normals, child(first, 2u), 0).xyz;
-    let n3 = way * textureLoad(normals, child(first, 3u), 0).xyz;
-    let n4 = way * textureLoad(normals, child(first, 4u), 0).xyz;
-    let n5 = way * textureLoad(normals, child(first, 5u), 0).xyz;
-    let n6 = way * textureLoad(normals, child(first, 6u), 0).xyz;
-    let n7 = way * textureLoad(normals, child(first, 7u), 0).xyz;
+    let n0 = way * m.c0.xyz;
+    let n1 = way * m.c1.xyz;
+    let n2 = way * m.c2.xyz;
+    let n3 = way * m.c3.xyz;
+    let n4 = way * m.c4.xyz;
+    let n5 = way * m.c5.xyz;
+    let n6 = way * m.c6.xyz;
+    let n7 = way * m.c7.xyz;
     // The four columns along each axis, in the order `parent` sums them.
-    let x = column(v0, n0.x, v1, n1.x, t) + column(v2, n2.x, v3, n3.x, t) + column(v4, n4.x, v5, n5.x, t)
-        + column(v6, n6.x, v7, n7.x, t);
-    let y = column(v0, n0.y, v2, n2.y, t) + column(v1, n1.y, v3, n3.y, t) + column(v4, n4.y, v6, n6.y, t)
-        + column(v5, n5.y, v7, n7.y, t);
-    let z = column(v0, n0.z, v4, n4.z, t) + column(v1, n1.z, v5, n5.z, t) + column(v2, n2.z, v6, n6.z, t)
-        + column(v3, n3.z, v7, n7.z, t);
+    let x = column(v.c0, n0.x, v.c1, n1.x, t) + column(v.c2, n2.x, v.c3, n3.x, t) + column(v.c4, n4.x, v.c5, n5.x, t)
+        + column(v.c6, n6.x, v.c7, n7.x, t);
+    let y = column(v.c0, n0.y, v.c2, n2.y, t) + column(v.c1, n1.y, v.c3, n3.y, t) + column(v.c4, n4.y, v.c6, n6.y, t)
+        + column(v.c5, n5.y, v.c7, n7.y, t);
+    let z = column(v.c0, n0.z, v.c4, n4.z, t) + column(v.c1, n1.z, v.c5, n5.z, t) + column(v.c2, n2.z, v.c6, n6.z, t)
+        + column(v.c3, n3.z, v.c7, n7.z, t);
     textureStore(out_x, texel, x * 0.25);
     textureStore(out_y, texel, y * 0.25);
     textureStore(out_z, texel, z * 0.25);
