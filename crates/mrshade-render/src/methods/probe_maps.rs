@@ -177,12 +177,10 @@ pub struct ProbeMaps {
     lookups: wgpu::Buffer,
     /// The shadow maps' side (pack_lights sizes the lights' texels to it).
     shadow_resolution: u32,
-    /// (lights, map side, shadow-map resolution, 0).
+    /// (lights, map side, 0, 0): the lookups carry the rest.
     info: wgpu::Buffer,
     /// Stands in for the maps' heights when there are none.
     unused: wgpu::Buffer,
-    /// Number of pairs (one per light).
-    count: u32,
     /// Side of the maps.
     resolution: u32,
 }
@@ -231,18 +229,17 @@ impl ProbeMaps {
             bytemuck::cast_slice(&lookups),
             wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         );
-        let info = UVec4::new(pairs.len() as u32, resolution, shadows.resolution, 0);
+        let info = UVec4::new(pairs.len() as u32, resolution, 0, 0);
         let info = init("probe_info", bytemuck::bytes_of(&info), wgpu::BufferUsages::UNIFORM);
         let unused = init("no_probe_lights", &[0; 256], wgpu::BufferUsages::STORAGE);
         Self {
             drawn: drawn.map(|(set, rsm, _, _)| (set, rsm)),
-            pair_list: pairs.clone(),
+            pair_list: pairs,
             pairs: pairs_buffer,
             lookups,
             shadow_resolution: shadows.resolution,
             info,
             unused,
-            count: pairs.len() as u32,
             resolution,
         }
     }
@@ -274,7 +271,7 @@ impl ProbeMaps {
     /// pairs of maps of which side; `None` without lights.
     pub fn maps(&self) -> Option<([&wgpu::Buffer; 3], u32, u32)> {
         let (set, rsm) = self.drawn.as_ref()?;
-        Some(([&set.buffer, &rsm.texels, &self.pairs], self.count, self.resolution))
+        Some(([&set.buffer, &rsm.texels, &self.pairs], self.pair_list.len() as u32, self.resolution))
     }
 
     /// The layout entries of `resources()`, bindings `first`… (compute).

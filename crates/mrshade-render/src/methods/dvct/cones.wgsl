@@ -50,12 +50,13 @@ fn volume_span(v: VolumeParams, o: vec3f, d: vec3f) -> vec2f {
 // A sample of one solution at level `lod` seen along unit `d`: the voxels themselves at level
 // 0, above it per axis the chain (mips.wgsl) of the way `d` travels along it (its half of the
 // texture along x, Volume::chains), with weights w = |d| / Σ|d|, an axis whose weight is
-// negligible not read; its reads (VolumeFetch), which volume_sample combines. Opacity is the product of the axes' transmittances raised to their
-// weights, 1 − Π (1 − α_a)^w_a: a wall that the cone crosses obliquely (opaque along its
+// negligible not read. fetch_volume issues the reads (VolumeFetch), volume_sample combines
+// them. Opacity is the product of the axes' transmittances raised to their weights,
+// 1 − Π (1 − α_a)^w_a: a wall that the cone crosses obliquely (opaque along its
 // normal, thin edge-on) stops it, where a weighted mean of the opacities let half the probe
 // through it at 45°; a blob equally opaque along all axes keeps its opacity. Radiance is the
 // weighted mean colour at that opacity (premultiplied).
-fn sample_volume(
+fn fetch_volume(
     base: texture_3d<f32>,
     x: texture_3d<f32>,
     y: texture_3d<f32>,
@@ -84,7 +85,7 @@ fn sample_volume(
 // An axis whose weight is below this is not read.
 const AXIS_WEIGHT_READ: f32 = 0.03;
 
-// The reads of one sample_volume, all issued before any is used (a step's reads, up to four
+// The reads of one fetch_volume, all issued before any is used (a step's reads, up to four
 // a solution, then wait on one latency, not four in turn), and what combines them.
 struct VolumeFetch {
     base: vec4f,
@@ -106,7 +107,7 @@ fn add_axis(sum: ptr<function, AxisSum>, w: f32, s: vec4f) {
     (*sum).log_transmit += w * log2(max(1.0 - s.a, 1e-6));
 }
 
-// The sample of sample_volume's reads.
+// The sample of fetch_volume's reads.
 fn volume_sample(f: VolumeFetch) -> vec4f {
     if (f.lod <= 0.0) { return f.base; }
     // (Σ w·colour, Σ w·opacity), Σ w·log₂ transmittance over the axes read, x, y, z in turn.
@@ -210,11 +211,11 @@ fn march(
         var f_rv: VolumeFetch;
         var f_r: VolumeFetch;
         if (inner) {
-            f_rv = sample_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
-            f_r = sample_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
+            f_rv = fetch_volume(volume_rv, volume_rv_x, volume_rv_y, volume_rv_z, uvw, lod, d);
+            f_r = fetch_volume(volume_r, volume_r_x, volume_r_y, volume_r_z, uvw, lod, d);
         } else {
-            f_rv = sample_volume(outer_rv, outer_rv_x, outer_rv_y, outer_rv_z, uvw, lod, d);
-            f_r = sample_volume(outer_r, outer_r_x, outer_r_y, outer_r_z, uvw, lod, d);
+            f_rv = fetch_volume(outer_rv, outer_rv_x, outer_rv_y, outer_rv_z, uvw, lod, d);
+            f_r = fetch_volume(outer_r, outer_r_x, outer_r_y, outer_r_z, uvw, lod, d);
         }
         var s_rv = volume_sample(f_rv);
         var s_r = volume_sample(f_r);

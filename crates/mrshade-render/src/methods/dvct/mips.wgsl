@@ -113,9 +113,7 @@ fn facing(n_e: f32) -> f32 { return clamp(1.0 - 2.0 * n_e, 0.0, 1.0); }
 // their normals along the cone's way, n·e), the parent's share the cone sees: each voxel's
 // light as seen from the cone's side, composited front to back.
 fn column(low: vec4f, low_n: f32, high: vec4f, high_n: f32, towards_low: bool) -> vec4f {
-    let a = vec4f(low.rgb * facing(low_n), low.a);
-    let b = vec4f(high.rgb * facing(high_n), high.a);
-    return select(over(a, b), over(b, a), towards_low);
+    return pair(vec4f(low.rgb * facing(low_n), low.a), vec4f(high.rgb * facing(high_n), high.a), towards_low);
 }
 
 // The first level, from the voxels (bound as all three finer levels): each voxel and its
