@@ -21,6 +21,20 @@ pub enum DlpvSplat {
     Trilinear,
 }
 
+/// Where the virtual objects' light from the real scene (V_ρ) comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DlpvVirtualLight {
+    /// Summed over the lights' VPLs at every cell (the maps' texels gathered in blocks of
+    /// `dlpv.gather_block`²): the inverse-square falloff at every distance; the default.
+    #[default]
+    #[serde(rename = "gathered")]
+    Gathered,
+    /// Injected and propagated as the changes are (the thesis's): light walks about √steps
+    /// cells and pools near its source (docs/benchmarks.md, 2026-12-04).
+    #[serde(rename = "propagated")]
+    Propagated,
+}
+
 /// Settings of the `dlpv` method. Defaults are the thesis's (spec §2.12.7).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -31,8 +45,8 @@ pub struct DlpvSettings {
     /// Side of the cubic volume as a multiple of the virtual content's largest bounding-box
     /// edge, centred on it. Default 2 ("twice the largest bounding box axis").
     pub extent: f32,
-    /// Propagation steps of the indirect change and of the virtual objects' volume (1–256).
-    /// Default 32.
+    /// Propagation steps of the indirect change, of the real scene's bounce light, and of the
+    /// virtual objects' volume when it is propagated (1–256). Default 32.
     pub propagation_steps: u32,
     /// Propagation steps of the direct change (0–256). Default 0: the thesis's code
     /// propagates it 5 steps (`render_direct(…, 5, …)`), but with nothing in the volume to
@@ -63,6 +77,14 @@ pub struct DlpvSettings {
     /// lavapipe desk-bunny 0.1617 → 0.1558, cornell 0.2551 → 0.2533, cornell-vb 0.2086 →
     /// 0.2053 (17°: desk-bunny 0.1462 but desk-spot-virtual 0.1155 → 0.1306).
     pub sharp_probe_shadows_deg: f32,
+    /// Where V_ρ, the virtual objects' light from the real scene, comes from: `gathered`
+    /// (default) or `propagated` (the thesis's).
+    pub virtual_light: DlpvVirtualLight,
+    /// Texels per side of the blocks of a map summed into one VPL of the gathered V_ρ (a
+    /// power of two, 8–256; at most a map's side). Default 8: 4096 VPLs per 512² map, 256 per
+    /// probe light's 128² (region FLIP on lavapipe cornell 0.2141 / 0.1904 / 0.1861 with 32 /
+    /// 16 / 8, desk-bunny 0.1373 / 0.1305 / 0.1262).
+    pub gather_block: u32,
 }
 
 impl Default for DlpvSettings {
@@ -77,6 +99,8 @@ impl Default for DlpvSettings {
             probe_lights: 32,
             splat: DlpvSplat::Cell,
             sharp_probe_shadows_deg: 8.4,
+            virtual_light: DlpvVirtualLight::Gathered,
+            gather_block: 8,
         }
     }
 }
@@ -107,6 +131,7 @@ impl DlpvSettings {
             "dlpv.sharp_probe_shadows_deg",
             format!("must be between 0 and 90 degrees, got {}", self.sharp_probe_shadows_deg),
         )?;
+        check_power_of_two(self.gather_block, 8, 256, "dlpv.gather_block", " texels")?;
         check_probe_lights(self.probe_lights, "dlpv.probe_lights")
     }
 }
@@ -117,12 +142,13 @@ mod tests {
 
     #[test]
     fn bad_values_are_named() {
-        let cases: [(DlpvSettings, &str); 5] = [
+        let cases: [(DlpvSettings, &str); 6] = [
             (DlpvSettings { resolution: 48, ..Default::default() }, "dlpv.resolution"),
             (DlpvSettings { propagation_steps: 0, ..Default::default() }, "dlpv.propagation_steps"),
             (DlpvSettings { rsm_resolution: 4096, ..Default::default() }, "dlpv.rsm_resolution"),
             (DlpvSettings { probe_lights: 6, ..Default::default() }, "dlpv.probe_lights"),
             (DlpvSettings { sharp_probe_shadows_deg: f32::NAN, ..Default::default() }, "dlpv.sharp_probe_shadows_deg"),
+            (DlpvSettings { gather_block: 4, ..Default::default() }, "dlpv.gather_block"),
         ];
         for (bad, name) in cases {
             assert!(bad.validate().unwrap_err().contains(name), "{name}");

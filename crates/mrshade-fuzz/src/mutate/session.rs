@@ -54,6 +54,8 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.probe_rsm_resolution", Kind::Number),
     ("dlpv.splat", Kind::Choice(&["cell", "trilinear", "nearest"])),
     ("dlpv.sharp_probe_shadows_deg", Kind::Number),
+    ("dlpv.virtual_light", Kind::Choice(&["gathered", "propagated", "volume"])),
+    ("dlpv.gather_block", Kind::Number),
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),

@@ -99,7 +99,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
         } else if (real_hit) {
             let r = vpl(real);
-            splat(SOURCE_RHO, vpl_position(real), r);
+            if (rho_propagated()) { splat(SOURCE_RHO, vpl_position(real), r); }
             splat(SOURCE_INDIRECT, vpl_position(real), r);
         }
         return;
@@ -116,7 +116,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let r = vpl(real);
     let hidden = array<vec4f, 3>(-r[0], -r[1], -r[2]);
     splat(SOURCE_INDIRECT, vpl_position(real), hidden);
-    splat(SOURCE_RHO, vpl_position(real), hidden);
+    if (rho_propagated()) { splat(SOURCE_RHO, vpl_position(real), hidden); }
     if (rsm_size.z == 1u) {
         // Lobe along the light (a direction, as SH of a delta), scaled so that the query on
         // this surface returns the irradiance taken away (the L1 projection of a delta

@@ -14,6 +14,7 @@
 //! Texels seen alike by R_ρ and R_μ cancel exactly at injection.
 
 mod lights;
+mod rho;
 
 use super::around::place;
 use super::probe_maps::{ProbeMaps, bounding_radius, layer_pairs};
@@ -26,10 +27,11 @@ use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use lights::{InjectSet, power_bound};
-use mrshade_core::settings::{DlpvSplat, RenderSettings, ShadowSettings};
+use mrshade_core::settings::{DlpvSplat, DlpvVirtualLight, RenderSettings, ShadowSettings};
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{bind, wgsl};
+use rho::{MapSet, RhoGather};
 use wgpu::util::DeviceExt;
 
 /// Mirrors `DlpvParams` in volume.wgsl.
@@ -46,6 +48,8 @@ pub struct DlpvParams {
     pub scale: Vec4,
     /// Propagation steps per source.
     pub steps: UVec4,
+    /// x: the first accumulated volume the propagation writes (1 when V_ρ is gathered).
+    pub propagated: UVec4,
 }
 
 /// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
@@ -93,6 +97,8 @@ pub struct DlpvMethod {
     /// The accumulated V_ρ, V_Δ and V_μ, one after the other (three RGB × four SH
     /// coefficients per cell each).
     pub volumes: wgpu::Buffer,
+    /// V_ρ summed over VPLs (`dlpv.virtual_light = "gathered"`).
+    rho: Option<RhoGather>,
     /// The per-pixel pass, over the internal size.
     gather: Dispatch,
     /// What direct lighting adds.
@@ -197,6 +203,7 @@ impl DlpvMethod {
         };
         let shadows = &session.settings.shadows;
         let scene_radius = bounding_radius(scene_box);
+        let gathered = settings.virtual_light == DlpvVirtualLight::Gathered;
         let probe_only: Vec<_> = probe_lights.iter().map(|(light, _)| light.clone()).collect();
         let bound =
             power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_only, bounding_radius(Some(cube)));
@@ -217,6 +224,7 @@ impl DlpvMethod {
                 steps[SOURCE_DIRECT] = settings.direct_steps;
                 UVec4::from_array(steps)
             },
+            propagated: UVec4::new(gathered as u32, 0, 0, 0),
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/injected"),
@@ -280,6 +288,7 @@ impl DlpvMethod {
                 InjectSet { group, pairs, resolution }
             };
         let mut sets = Vec::new();
+        let mut map_sets = Vec::new();
         let scene_maps = (!scene.shadow_layers.is_empty()).then(|| {
             let layers = &scene.shadow_layers;
             let resolution = settings.rsm_resolution;
@@ -293,7 +302,7 @@ impl DlpvMethod {
             });
             let buffers = [&scene.lights, &rsm.texels, &pairs_buffer];
             sets.push(inject_set("scene_lights", buffers, pairs.len() as u32, resolution, false));
-            rsm
+            (rsm, pairs_buffer, pairs.len() as u32)
         });
         let probe = ProbeMaps::new(
             ctx,
@@ -306,8 +315,13 @@ impl DlpvMethod {
             scene_box,
             shadows,
         );
+        if let Some((rsm, pairs_buffer, pairs)) = &scene_maps {
+            let buffers = [&scene.lights, &rsm.texels, pairs_buffer];
+            map_sets.push(MapSet { buffers, pairs: *pairs, resolution: settings.rsm_resolution });
+        }
         if let Some((buffers, pairs, resolution)) = probe.maps() {
             sets.push(inject_set("probe_lights", buffers, pairs, resolution, true));
+            map_sets.push(MapSet { buffers, pairs, resolution });
         }
 
         // Seeding and propagation: every source's volume in scratch A and B, the sums of the
@@ -355,6 +369,18 @@ impl DlpvMethod {
             })
             .collect();
         let volumes = sums[updates[max_steps as usize + 1] % 2].clone();
+        let rho = gathered.then(|| {
+            RhoGather::new(
+                device,
+                &step_params[0],
+                &volumes,
+                &map_sets,
+                settings.gather_block,
+                scene.geometry.virtual_box(),
+                &params,
+            )
+        });
+        drop(map_sets);
         let first_sums = sums[0].clone();
 
         // The per-pixel merge.
@@ -395,7 +421,7 @@ impl DlpvMethod {
             extent: settings.extent,
             scene_box,
             shadows: *shadows,
-            scene_maps,
+            scene_maps: scene_maps.map(|(rsm, _, _)| rsm),
             probe,
             sets,
             injected,
@@ -405,6 +431,7 @@ impl DlpvMethod {
             dispatches,
             first_sums,
             volumes,
+            rho,
             gather: Dispatch {
                 pipeline: gather,
                 groups: gather_groups,
@@ -430,6 +457,9 @@ impl DlpvMethod {
         }
         let cube = (origin, origin + Vec3::splat(side));
         self.probe.follow(queue, cube, self.scene_box, &self.shadows);
+        if let Some(rho) = &mut self.rho {
+            rho.follow(queue, geometry.virtual_box(), &self.params);
+        }
     }
 }
 
@@ -470,9 +500,14 @@ impl LightTransport for DlpvMethod {
                     pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
                     // x, y: cells; z: cells × accumulated volume × channel (propagate.wgsl).
-                    pass.dispatch_workgroups(res / 4, res / 4, res / 4 * 3 * VOLUMES as u32);
+                    let volumes = VOLUMES as u32 - self.params.propagated.x;
+                    pass.dispatch_workgroups(res / 4, res / 4, res / 4 * 3 * volumes);
                 }
             });
+            if let Some(rho) = &self.rho {
+                rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
+                rec.compute(RhoGather::LABEL, |pass| rho.record(pass));
+            }
         }
         rec.compute(Self::LABEL, |pass| self.gather.record(pass));
     }

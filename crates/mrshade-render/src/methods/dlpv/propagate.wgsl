@@ -148,7 +148,7 @@ fn injected_at(s: u32, ch: u32, cell: u32) -> vec4i {
 }
 
 // The invocation of cell (x, y, z mod res) and of accumulated volume × channel z / res
-// (3·v + ch): a cell's work spread over nine invocations, so a 32³ volume is more than one
+// (3·v + ch, from the first volume propagated): a cell's work spread over nine invocations, so a 32³ volume is more than one
 // wave of the GPU, and 4³ cells a workgroup, whose neighbours' reads mostly fall in the same
 // workgroup (alone it measured no faster than rows of 64 cells, docs/benchmarks.md r40).
 struct Invocation {
@@ -162,7 +162,7 @@ fn invocation(id: vec3u) -> Invocation {
     let res = params.info.x;
     let cell = vec3u(id.xy, id.z % res);
     let vc = id.z / res;
-    return Invocation(vec3i(cell), (cell.z * res + cell.y) * res + cell.x, vc / 3u, vc % 3u);
+    return Invocation(vec3i(cell), (cell.z * res + cell.y) * res + cell.x, vc / 3u + params.propagated.x, vc % 3u);
 }
 
 @compute @workgroup_size(4, 4, 4)

@@ -13,7 +13,12 @@ struct DlpvParams {
     scale: vec4f,
     // propagation steps per source (SOURCE_*)
     steps: vec4u,
+    // x: the first accumulated volume the propagation writes (1 when V_ρ is gathered from
+    // VPLs, rho_vpl.wgsl, and V_ρ's source is neither injected nor propagated)
+    propagated: vec4u,
 }
+
+fn rho_propagated() -> bool { return params.propagated.x == 0u; }
 
 // `info.w`: a VPL goes into the cell it lies in, or trilinearly into the eight around it.
 const SPLAT_CELL: u32 = 0u;
