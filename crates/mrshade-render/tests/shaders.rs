@@ -98,7 +98,7 @@ fn dlpv_params_match() {
                 ("info", offset_of!(dlpv::DlpvParams, info)),
                 ("scale", offset_of!(dlpv::DlpvParams, scale)),
                 ("steps", offset_of!(dlpv::DlpvParams, steps)),
-                ("propagated", offset_of!(dlpv::DlpvParams, propagated)),
+                ("gathered", offset_of!(dlpv::DlpvParams, gathered)),
             ],
         );
     }

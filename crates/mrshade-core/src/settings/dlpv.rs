@@ -85,6 +85,10 @@ pub struct DlpvSettings {
     /// probe light's 128² (region FLIP on lavapipe cornell 0.2141 / 0.1904 / 0.1861 with 32 /
     /// 16 / 8, desk-bunny 0.1373 / 0.1305 / 0.1262).
     pub gather_block: u32,
+    /// With `virtual_light = "gathered"`: the real surfaces the camera sees light the virtual
+    /// objects with the radiance the photo shows of them (every bounce of the real scene),
+    /// the maps' VPLs the surfaces it does not see. Default true.
+    pub photo_bounce: bool,
 }
 
 impl Default for DlpvSettings {
@@ -101,6 +105,7 @@ impl Default for DlpvSettings {
             sharp_probe_shadows_deg: 8.4,
             virtual_light: DlpvVirtualLight::Gathered,
             gather_block: 8,
+            photo_bounce: true,
         }
     }
 }

@@ -31,7 +31,7 @@ use mrshade_core::settings::{DlpvSplat, DlpvVirtualLight, RenderSettings, Shadow
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use mrshade_gpu::{bind, wgsl};
-use rho::{MapSet, RhoGather};
+use rho::{MapSet, RhoGather, RhoPhoto};
 use wgpu::util::DeviceExt;
 
 /// Mirrors `DlpvParams` in volume.wgsl.
@@ -48,8 +48,9 @@ pub struct DlpvParams {
     pub scale: Vec4,
     /// Propagation steps per source.
     pub steps: UVec4,
-    /// x: the first accumulated volume the propagation writes (1 when V_ρ is gathered).
-    pub propagated: UVec4,
+    /// x: 1 when V_ρ is gathered from VPLs (the propagation writes the accumulated volumes
+    /// from the second on); y: 1 when the photo's light is in it (`dlpv.photo_bounce`).
+    pub gathered: UVec4,
 }
 
 /// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
@@ -104,6 +105,8 @@ pub struct DlpvMethod {
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     stale: bool,
+    /// The camera or the photo changed: V_ρ takes the photo's light again.
+    stale_photo: bool,
 }
 
 /// Builds the method (the registry's `build`).
@@ -224,7 +227,7 @@ impl DlpvMethod {
                 steps[SOURCE_DIRECT] = settings.direct_steps;
                 UVec4::from_array(steps)
             },
-            propagated: UVec4::new(gathered as u32, 0, 0, 0),
+            gathered: UVec4::new(gathered as u32, (gathered && settings.photo_bounce) as u32, 0, 0),
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/injected"),
@@ -370,11 +373,13 @@ impl DlpvMethod {
             .collect();
         let volumes = sums[updates[max_steps as usize + 1] % 2].clone();
         let rho = gathered.then(|| {
+            let photo = RhoPhoto { frame_uniforms, gbuffer, photo: inputs.photo, internal_size };
             RhoGather::new(
                 device,
                 &step_params[0],
                 &volumes,
                 &map_sets,
+                photo,
                 settings.gather_block,
                 scene.geometry.virtual_box(),
                 &params,
@@ -439,6 +444,7 @@ impl DlpvMethod {
             },
             indirect,
             stale: true,
+            stale_photo: false,
         }
     }
 
@@ -476,9 +482,16 @@ impl LightTransport for DlpvMethod {
             }
             self.stale = true;
         }
+        // The photo's light in V_ρ follows the camera and the photo.
+        self.stale_photo |= (change.camera_moved || change.photo_changed) && self.params.gathered.y == 1;
     }
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        let stale_photo = std::mem::take(&mut self.stale_photo);
+        // A new photo or camera alone: the maps are as they were, V_ρ is gathered again.
+        if let (false, true, Some(rho)) = (self.stale, stale_photo, &self.rho) {
+            rec.compute(RhoGather::LABEL, |pass| rho.record(pass));
+        }
         if std::mem::take(&mut self.stale) {
             if let Some(rsm) = &self.scene_maps {
                 rsm.record_maps(rec, rasterizer, false);
@@ -500,7 +513,7 @@ impl LightTransport for DlpvMethod {
                     pass.set_pipeline(if k == 0 { &self.seed } else { &self.propagate });
                     pass.set_bind_group(0, group, &[]);
                     // x, y: cells; z: cells × accumulated volume × channel (propagate.wgsl).
-                    let volumes = VOLUMES as u32 - self.params.propagated.x;
+                    let volumes = VOLUMES as u32 - self.params.gathered.x;
                     pass.dispatch_workgroups(res / 4, res / 4, res / 4 * 3 * volumes);
                 }
             });

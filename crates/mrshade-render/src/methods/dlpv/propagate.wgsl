@@ -162,7 +162,7 @@ fn invocation(id: vec3u) -> Invocation {
     let res = params.info.x;
     let cell = vec3u(id.xy, id.z % res);
     let vc = id.z / res;
-    return Invocation(vec3i(cell), (cell.z * res + cell.y) * res + cell.x, vc / 3u + params.propagated.x, vc % 3u);
+    return Invocation(vec3i(cell), (cell.z * res + cell.y) * res + cell.x, vc / 3u + params.gathered.x, vc % 3u);
 }
 
 @compute @workgroup_size(4, 4, 4)

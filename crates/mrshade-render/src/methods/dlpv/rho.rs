@@ -42,10 +42,27 @@ fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3,
     (first, last + 1 - first)
 }
 
-/// One set of maps to sum into VPLs: its group and its workgroups (blocks per side, pairs).
+/// What the photo's light in V_ρ reads (rho_photo.wgsl): the frame, its G-buffer and photo.
+pub(super) struct RhoPhoto<'a> {
+    pub frame_uniforms: &'a wgpu::Buffer,
+    pub gbuffer: &'a crate::passes::gbuffer::GBuffer,
+    pub photo: &'a mrshade_gpu::Target,
+    pub internal_size: (u32, u32),
+}
+
+/// Pixels per side of the photo's tiles (rho_photo.wgsl) at `internal_size`: a power of two
+/// near a sixtieth of its height, 2 to 16 (so that a tile's footprint, not its pixel count,
+/// stays alike: 16-pixel tiles of a 160 × 120 image are a seventh of it).
+fn photo_tile(internal_size: (u32, u32)) -> u32 {
+    let t = (internal_size.1 / 60).clamp(2, 16);
+    1 << t.ilog2()
+}
+
+/// One set of maps to sum into VPLs: its group and its workgroups (blocks along x and y,
+/// pairs); the photo's tiles last, with no pairs.
 struct AggregateSet {
     group: wgpu::BindGroup,
-    blocks: u32,
+    blocks: [u32; 2],
     pairs: u32,
 }
 
@@ -59,6 +76,8 @@ pub(super) struct MapSet<'a> {
 /// The two passes and the VPLs between them.
 pub(super) struct RhoGather {
     aggregate: wgpu::ComputePipeline,
+    photo_tiles: wgpu::ComputePipeline,
+    camera_group: wgpu::BindGroup,
     sets: Vec<AggregateSet>,
     gather: wgpu::ComputePipeline,
     gather_group: wgpu::BindGroup,
@@ -81,15 +100,20 @@ impl RhoGather {
         params: &wgpu::Buffer,
         volumes: &wgpu::Buffer,
         sets: &[MapSet],
+        photo: RhoPhoto,
         block: u32,
         virtual_box: Option<(Vec3, Vec3)>,
         values: &DlpvParams,
     ) -> Self {
         let cs = wgpu::ShaderStages::COMPUTE;
         let sides: Vec<u32> = sets.iter().map(|s| block.min(s.resolution)).collect();
+        let set_buffers: Vec<[&wgpu::Buffer; 3]> = sets.iter().map(|s| s.buffers).collect();
         let counts: Vec<u32> =
             sets.iter().zip(&sides).map(|(s, side)| s.pairs * (s.resolution / side).pow(2)).collect();
-        let total: u32 = counts.iter().sum();
+        let tile = photo_tile(photo.internal_size);
+        let tiles = [photo.internal_size.0.div_ceil(tile), photo.internal_size.1.div_ceil(tile)];
+        let map_vpls: u32 = counts.iter().sum();
+        let total = map_vpls + tiles[0] * tiles[1];
         let vpls = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/rho_vpls"),
             size: (total.max(1) as usize * std::mem::size_of::<GatherVpl>()) as u64,
@@ -108,10 +132,39 @@ impl RhoGather {
                 bind::uniform(5, cs),
             ],
         );
-        let aggregate =
-            compute_pipeline_entry(device, "dlpv/rho_aggregate", AGGREGATE_SHADER, "aggregate", &[&aggregate_layout]);
+        // The frame, the G-buffer's depth, normals and flags, the photo (rho_photo.wgsl).
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let d2 = wgpu::TextureViewDimension::D2;
+        let camera_layout = bind::layout(
+            device,
+            "dlpv/rho_camera_layout",
+            &[
+                bind::uniform(0, cs),
+                bind::texture(1, cs, unfilterable, d2),
+                bind::texture(2, cs, unfilterable, d2),
+                bind::texture(3, cs, wgpu::TextureSampleType::Uint, d2),
+                bind::texture(4, cs, unfilterable, d2),
+            ],
+        );
+        use wgpu::BindingResource::TextureView;
+        let camera_group = bind::group(
+            device,
+            "dlpv/rho_camera_group",
+            &camera_layout,
+            &[
+                photo.frame_uniforms.as_entire_binding(),
+                TextureView(&photo.gbuffer.depth_motion.view),
+                TextureView(&photo.gbuffer.normal_roughness.view),
+                TextureView(&photo.gbuffer.flags.view),
+                TextureView(&photo.photo.view),
+            ],
+        );
+        let layouts = [&aggregate_layout, &camera_layout];
+        let aggregate = compute_pipeline_entry(device, "dlpv/rho_aggregate", AGGREGATE_SHADER, "aggregate", &layouts);
+        let photo_tiles =
+            compute_pipeline_entry(device, "dlpv/rho_photo_tiles", AGGREGATE_SHADER, "photo_tiles", &layouts);
         let mut first = 0;
-        let sets = sets
+        let mut sets: Vec<AggregateSet> = sets
             .iter()
             .zip(sides.iter().zip(&counts))
             .enumerate()
@@ -136,9 +189,34 @@ impl RhoGather {
                         info.as_entire_binding(),
                     ],
                 );
-                AggregateSet { group, blocks: set.resolution / side, pairs: set.pairs }
+                AggregateSet { group, blocks: [set.resolution / side; 2], pairs: set.pairs }
             })
             .collect();
+        let photo_set = values.gathered.y == 1;
+        if photo_set {
+            // The photo's tiles after the maps' VPLs (their group's maps unread).
+            let [lights, texels, pairs] = set_buffers.first().copied().unwrap_or([&vpls; 3]);
+            let info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("dlpv/rho_photo_info"),
+                contents: bytemuck::bytes_of(&UVec4::new(0, 0, map_vpls, tile)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let group = bind::group(
+                device,
+                "dlpv/rho_photo_group",
+                &aggregate_layout,
+                &[
+                    params.as_entire_binding(),
+                    texels.as_entire_binding(),
+                    pairs.as_entire_binding(),
+                    lights.as_entire_binding(),
+                    vpls.as_entire_binding(),
+                    info.as_entire_binding(),
+                ],
+            );
+            sets.push(AggregateSet { group, blocks: tiles, pairs: 0 });
+        }
+        let total = if photo_set { total } else { map_vpls };
         let gather_layout = bind::layout(
             device,
             "dlpv/rho_gather_layout",
@@ -162,7 +240,7 @@ impl RhoGather {
                 info.as_entire_binding(),
             ],
         );
-        Self { aggregate, sets, gather, gather_group, info, vpl_count: total, size }
+        Self { aggregate, photo_tiles, camera_group, sets, gather, gather_group, info, vpl_count: total, size }
     }
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
@@ -175,10 +253,11 @@ impl RhoGather {
 
     /// Sums the maps into VPLs, then writes V_ρ (after the propagation, which leaves it).
     pub fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        pass.set_pipeline(&self.aggregate);
-        for set in self.sets.iter().filter(|s| s.pairs > 0) {
+        pass.set_bind_group(1, &self.camera_group, &[]);
+        for set in &self.sets {
+            pass.set_pipeline(if set.pairs > 0 { &self.aggregate } else { &self.photo_tiles });
             pass.set_bind_group(0, &set.group, &[]);
-            pass.dispatch_workgroups(set.blocks, set.blocks, set.pairs);
+            pass.dispatch_workgroups(set.blocks[0], set.blocks[1], set.pairs.max(1));
         }
         pass.set_pipeline(&self.gather);
         pass.set_bind_group(0, &self.gather_group, &[]);
@@ -189,11 +268,13 @@ impl RhoGather {
 
 const AGGREGATE_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
     "volume.wgsl",
     "rho_vpl.wgsl",
     "rho_aggregate.wgsl",
+    "rho_photo.wgsl",
 );
 
 const GATHER_SHADER: &str = wgsl!(

@@ -1,18 +1,46 @@
-// `aggregate` of V_ρ gathered from VPLs (rho_vpl.wgsl): one workgroup per block of a pair of
-// maps.
+// `aggregate` of V_ρ gathered from VPLs (rho_vpl.wgsl): one workgroup per block of
+// `gather_info.w`² texels of a pair of maps, R_ρ's real texels (those no virtual surface
+// hides, as V_ρ's injection) summed into one VPL; with the photo's light (`photo_tiles`,
+// rho_photo.wgsl) the texels the camera sees are left to the photo.
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
 @group(0) @binding(2) var<storage, read> pairs: array<vec4u>;
 @group(0) @binding(3) var<storage, read> lights: array<Light>;
-@group(0) @binding(4) var<storage, read_write> vpls: array<GatherVpl>;
-// The maps' side, pairs, this set's first VPL, texels per block side.
-@group(0) @binding(5) var<uniform> rho_info: vec4u;
+@group(0) @binding(4) var<storage, read_write> rho_vpls: array<GatherVpl>;
+// The maps' side, pairs, this set's (or the photo tiles') first VPL, texels per block side.
+@group(0) @binding(5) var<uniform> gather_info: vec4u;
 
-const AGGREGATE_THREADS: u32 = 64u;
-var<workgroup> partial_flux: array<vec4f, 64>;
-var<workgroup> partial_position: array<vec4f, 64>;
-var<workgroup> partial_normal: array<vec4f, 64>;
+// Texels (or pixels) summed: Σ reflected flux (rgb) and area (w); Σ w·position (xyz) and
+// Σ w (w); Σ w·normal, w the flux's luminance.
+struct Sum {
+    flux: vec4f,
+    position: vec4f,
+    normal: vec4f,
+}
+
+const THREADS: u32 = 64u;
+var<workgroup> partial: array<Sum, 64>;
+
+fn plus(a: Sum, b: Sum) -> Sum {
+    return Sum(a.flux + b.flux, a.position + b.position, a.normal + b.normal);
+}
+
+fn texel_sum(t: RsmTexel) -> Sum {
+    let reflected = t.power.rgb * t.albedo.rgb * (1.0 - t.albedo.w);
+    let w = dot(reflected, vec3f(0.2126, 0.7152, 0.0722)) + 1e-20;
+    return Sum(vec4f(reflected, t.material.w), vec4f(t.position.xyz * w, w), vec4f(t.normal.xyz * w, 0.0));
+}
+
+fn to_vpl(sum: Sum) -> GatherVpl {
+    var out: GatherVpl;
+    let p = sum.position;
+    let n = sum.normal.xyz;
+    out.position = vec4f(select(vec3f(0.0), p.xyz / p.w, p.w > 0.0), sum.flux.w);
+    out.normal = vec4f(select(vec3f(0.0, 0.0, 1.0), normalize(n), dot(n, n) > 0.0), 0.0);
+    out.flux = vec4f(sum.flux.rgb, 0.0);
+    return out;
+}
 
 fn light_depth(light: Light, p: vec3f) -> f32 {
     if (light.info.x == LIGHT_DIRECTIONAL) { return dot(p, light.direction_real.xyz); }
@@ -22,13 +50,13 @@ fn light_depth(light: Light, p: vec3f) -> f32 {
 @compute @workgroup_size(8, 8)
 fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) local: vec3u,
              @builtin(local_invocation_index) thread: u32) {
-    let res = rho_info.x;
-    let side = rho_info.w;
+    let res = gather_info.x;
+    let side = gather_info.w;
     let pair = pairs[block.z];
     let light = lights[pair.z];
-    var flux = vec4f(0.0);
-    var position = vec4f(0.0);
-    var normal = vec4f(0.0);
+    // A virtual light's light is in no photo: its maps keep every texel.
+    let photo = params.gathered.y == 1u && light.direction_real.w > 0.5;
+    var sum = Sum(vec4f(0.0), vec4f(0.0), vec4f(0.0));
     let per_thread = side / 8u;
     for (var j = 0u; j < per_thread; j++) {
         for (var i = 0u; i < per_thread; i++) {
@@ -40,34 +68,18 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             if (virt.position.w > 0.5 && light_depth(light, virt.position.xyz) < light_depth(light, real.position.xyz)) {
                 continue;
             }
-            let reflected = real.power.rgb * real.albedo.rgb * (1.0 - real.albedo.w);
-            let w = dot(reflected, vec3f(0.2126, 0.7152, 0.0722)) + 1e-20;
-            flux += vec4f(reflected, real.material.w);
-            position += vec4f(real.position.xyz * w, w);
-            normal += vec4f(real.normal.xyz * w, 0.0);
+            if (photo && seen_by_camera(real.position.xyz, real.normal.xyz, cell_side())) { continue; }
+            sum = plus(sum, texel_sum(real));
         }
     }
-    partial_flux[thread] = flux;
-    partial_position[thread] = position;
-    partial_normal[thread] = normal;
+    partial[thread] = sum;
     workgroupBarrier();
-    for (var stride = AGGREGATE_THREADS / 2u; stride > 0u; stride = stride / 2u) {
-        if (thread < stride) {
-            partial_flux[thread] += partial_flux[thread + stride];
-            partial_position[thread] += partial_position[thread + stride];
-            partial_normal[thread] += partial_normal[thread + stride];
-        }
+    for (var stride = THREADS / 2u; stride > 0u; stride = stride / 2u) {
+        if (thread < stride) { partial[thread] = plus(partial[thread], partial[thread + stride]); }
         workgroupBarrier();
     }
     if (thread == 0u) {
         let blocks = res / side;
-        let f = partial_flux[0];
-        let p = partial_position[0];
-        let n = partial_normal[0].xyz;
-        var out: GatherVpl;
-        out.position = vec4f(select(vec3f(0.0), p.xyz / p.w, p.w > 0.0), f.w);
-        out.normal = vec4f(select(vec3f(0.0, 0.0, 1.0), normalize(n), dot(n, n) > 0.0), 0.0);
-        out.flux = vec4f(f.rgb, 0.0);
-        vpls[rho_info.z + (block.z * blocks + block.y) * blocks + block.x] = out;
+        rho_vpls[gather_info.z + (block.z * blocks + block.y) * blocks + block.x] = to_vpl(partial[0]);
     }
 }

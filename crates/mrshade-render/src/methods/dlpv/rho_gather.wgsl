@@ -1,15 +1,11 @@
 // `gather` of V_ρ gathered from VPLs (rho_vpl.wgsl): one invocation per cell of the virtual
 // content's box and two cells around it (the only ones virtual pixels read). A VPL's patch
 // of area A, exitance M = Φ/A, lights the cell's centre x with the irradiance of a disk
-// facing it, E = Φ/π·cos_v / (d² + A/π) (exact on the disk's axis, no pole as d → 0). The
-// emission cosine cos_v is seen from a cell behind the patch, as the injection shifts a VPL
-// along its normal: the cells that straddle a lit surface, which the merge reads beside it
-// trilinearly (a block's foot on a lit floor), see it, and grazing light is lighter.
-// Measured against the clamped cosine from the patch itself (0 / ½ / 1 cell behind, region
-// FLIP on lavapipe cornell 0.2022 / 0.1910 / 0.1861, desk-bunny 0.1299 / 0.1277 / 0.1262,
-// desk-spot-real 0.1795 / 0.1660 / 0.1631): one bounce gathered leaves the virtual faces
-// short of light (cornell's mean 0.80–0.87 of the answer from the patch itself, 0.87–0.96
-// with a cell), and so did the half-cell lift of the centres in front, docs/benchmarks.md.
+// facing it, E = Φ/π·cos_v / (d² + A/π) (exact on the disk's axis, no pole as d → 0), cos_v
+// its emission cosine toward the cell. (With the maps' VPLs alone, one bounce, the virtual
+// faces of cornell took 0.80–0.87 of the answer's light, and a cosine seen from a cell behind
+// the patch, lighter at grazing angles, scored better; with the photo's light, which holds
+// every bounce, they take 0.94–0.99 and the plain cosine scores best: docs/benchmarks.md.)
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> vpls: array<GatherVpl>;
@@ -36,8 +32,7 @@ fn gather(@builtin(global_invocation_id) id: vec3u) {
         let d = x - vpl.position.xyz;
         let dist2 = max(dot(d, d), 1e-12);
         let to_cell = d * inverseSqrt(dist2);
-        let behind = d + h * n;
-        let cos_v = dot(n, behind) * inverseSqrt(max(dot(behind, behind), 1e-12));
+        let cos_v = dot(n, to_cell);
         if (cos_v <= 0.0) { continue; }
         let e = vpl.flux.rgb * (cos_v / (PI * (dist2 + vpl.position.w / PI)));
         let y = sh4(to_cell);

@@ -13,12 +13,13 @@ struct DlpvParams {
     scale: vec4f,
     // propagation steps per source (SOURCE_*)
     steps: vec4u,
-    // x: the first accumulated volume the propagation writes (1 when V_ρ is gathered from
-    // VPLs, rho_vpl.wgsl, and V_ρ's source is neither injected nor propagated)
-    propagated: vec4u,
+    // x: 1 when V_ρ is gathered from VPLs (rho_vpl.wgsl): its source is neither injected nor
+    // propagated, and the propagation writes the accumulated volumes from the second on;
+    // y: 1 when the photo's light is in it (rho_photo.wgsl)
+    gathered: vec4u,
 }
 
-fn rho_propagated() -> bool { return params.propagated.x == 0u; }
+fn rho_propagated() -> bool { return params.gathered.x == 0u; }
 
 // `info.w`: a VPL goes into the cell it lies in, or trilinearly into the eight around it.
 const SPLAT_CELL: u32 = 0u;
