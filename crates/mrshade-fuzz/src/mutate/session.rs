@@ -56,6 +56,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.sharp_probe_shadows_deg", Kind::Number),
     ("dlpv.virtual_light", Kind::Choice(&["gathered", "propagated", "volume"])),
     ("dlpv.gather_block", Kind::Number),
+    ("dlpv.photo_bounce", Kind::Bool),
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),
     ("ibl.prt_samples", Kind::Number),

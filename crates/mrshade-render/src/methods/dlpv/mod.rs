@@ -11,7 +11,12 @@
 //! lights by median cut (`dlpv.probe_lights`) whose maps inject its bounce light and, as the
 //! direct change, the shadow of its broad lights; its small bright sources' shadow on real
 //! surfaces is read from their maps in the merge (`dlpv.sharp_probe_shadows_deg`), sharp.
-//! Texels seen alike by R_ρ and R_μ cancel exactly at injection.
+//! Texels seen alike by R_ρ and R_μ cancel exactly at injection. V_ρ, the virtual objects' light
+//! from the real scene, is by default not propagated but gathered (`dlpv.virtual_light`,
+//! rho.rs): the maps' texels summed into VPLs and the real surfaces the camera sees into VPLs
+//! of the photo's light (`dlpv.photo_bounce`), each cell of the virtual content's box the sum
+//! of their light — the propagation's light walks about √steps cells and pools near its source,
+//! and sources outside the volume never enter it.
 
 mod lights;
 mod rho;

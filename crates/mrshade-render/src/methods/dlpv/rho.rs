@@ -1,6 +1,8 @@
 //! V_ρ gathered from VPLs (`dlpv.virtual_light = "gathered"`, rho_vpl.wgsl): the lights'
-//! maps summed block by block into VPLs, and every cell of V_ρ the sum of their light at its
-//! centre, in place of V_ρ's propagation.
+//! maps summed block by block into VPLs (rho_aggregate.wgsl), with `dlpv.photo_bounce` the
+//! camera's real pixels tile by tile into VPLs of the photo's light (rho_photo.wgsl), and
+//! every cell of V_ρ around the virtual content the sum of their light at its centre
+//! (rho_gather.wgsl), in place of V_ρ's propagation.
 
 use super::DlpvParams;
 use bytemuck::{Pod, Zeroable};

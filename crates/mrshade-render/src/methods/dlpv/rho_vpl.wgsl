@@ -5,9 +5,10 @@
 // so that the virtual objects took 200× too little light from far walls and too much beside
 // a lit floor; a sum over VPLs has the inverse-square falloff at every distance.
 //
-// `aggregate`: one workgroup per block of `rho_info.w`² texels of a pair of maps: R_ρ's real
+// `aggregate`: one workgroup per block of `gather_info.w`² texels of a pair of maps: R_ρ's real
 // texels (those no virtual surface hides, as V_ρ's injection) summed into one VPL (reflected
-// flux, flux-weighted position and normal, the patch's area). `gather`: one invocation per
+// flux, flux-weighted position and normal, the patch's area); `photo_tiles` the same of the
+// photo's light of the real surfaces the camera sees (rho_photo.wgsl). `gather`: one invocation per
 // cell, the radiance of every VPL arriving at the cell's centre projected onto the cell's SH
 // (the SH of a direction, Σ E·Y(ω)), scaled to the volume's intensity convention (× h², read
 // by the merge as ⟨c, clamped cosine(−n)⟩ / h²).
