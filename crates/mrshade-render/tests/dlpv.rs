@@ -241,7 +241,10 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_through_its_maps() 
         let mut s = Setup::sun_over_floor();
         s.cube([0.0, 0.05, -0.1], 0.05, false);
         s.top_toml = "method = \"dlpv\"\n".into();
-        s.extra_toml += &format!("[dlpv]\nextent = 4.0\nresolution = 8\nsharp_probe_shadows_deg = {sharp_deg}\n");
+        // Maps of 128² (6 mm texels here; the default 64² draws the shadow's edge a texel wider).
+        s.extra_toml += &format!(
+            "[dlpv]\nextent = 4.0\nresolution = 8\nprobe_rsm_resolution = 128\nsharp_probe_shadows_deg = {sharp_deg}\n"
+        );
         s.render()
     };
     let ratio = |r: &common::Rendered, i: usize| r.radiance.rv.pixels[i][1] / r.radiance.r.pixels[i][1];
@@ -357,10 +360,10 @@ fn down_facing(c: Vec4, h: f32) -> f32 {
 
 #[test]
 fn the_gathered_virtual_light_is_the_sum_of_a_lit_floors_light() {
-    // The cell 2.5 cm below the cube holds the floor's light but under the cube's footprint,
+    // The cell 0.5 cm below the cube holds the floor's light but under the cube's footprint,
     // summed over the whole floor by the CPU (radiance 0.6 · 2 / π). The propagated V_ρ has
     // none of it: the floor lies 2 cm below the volume, where no VPL can be injected.
-    let at = [8, 4, 8];
+    let at = [8, 5, 8];
     let (c, h, x) = rho_cell(&lit_floor(32, "photo_bounce = false\n"), at);
     let gathered = down_facing(c, h);
     let expected = floor_light_at(x, 0.6 * 2.0 / std::f32::consts::PI, 0.02);
@@ -375,10 +378,9 @@ fn the_gathered_virtual_light_is_the_sum_of_a_lit_floors_light() {
 fn the_floor_the_camera_sees_lights_the_virtual_object_with_the_photos_light() {
     // The same floor seen from above in a photo of uniform grey 128 (radiance 0.2158 at
     // exposure 1, not the 0.382 its light and albedo give): with `photo_bounce` the cell beside
-    // the cube takes the photo's light of the floor (16-pixel tiles of 512² pixels), the CPU's
-    // sum of the same radiance over the floor the camera sees (1 % off; with 256² pixels, tiles
-    // of 3.4 cm 6.5 cm below the cell, 9 % under it).
-    let at = [11, 4, 8];
+    // the cube takes the photo's light of the floor (13-pixel tiles of 512² pixels), the CPU's
+    // sum of the same radiance over the floor the camera sees.
+    let at = [10, 5, 8];
     let (c, h, x) = rho_cell(&lit_floor(512, ""), at);
     let gathered = down_facing(c, h);
     // sRGB 128 in linear.

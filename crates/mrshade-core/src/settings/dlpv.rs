@@ -57,8 +57,10 @@ pub struct DlpvSettings {
     /// power of two, 32–2048). Default 512 (spec §2.12.7).
     pub rsm_resolution: u32,
     /// Side of the maps of the probe's directional lights (a power of two, 32–2048). Default
-    /// 128: with 32 lights, 512² maps cost 3.3 ms to draw and 3 ms to inject on the H200 when
-    /// an object moves, and change no score (a 32³ volume resolves no more).
+    /// 64: 0.13–0.21 ms less per moving frame than 128 on an H100 at 1080p (maps, injection,
+    /// the gathered V_ρ's VPLs), at region FLIP on lavapipe 0.1744 → 0.1745 (cornell), 0.1243
+    /// → 0.1263 (desk-bunny), 0.1649 → 0.1670 (desk-spot-real), 0.1019 → 0.1042
+    /// (desk-spot-virtual); 512² maps cost 3.3 ms to draw and 3 ms to inject on the H200.
     pub probe_rsm_resolution: u32,
     /// Directional lights the probe is split into (median cut; 0 or a power of two up to 64):
     /// their maps carry the probe's light into both volumes and its shadow into the direct
@@ -81,9 +83,11 @@ pub struct DlpvSettings {
     /// (default) or `propagated` (the thesis's).
     pub virtual_light: DlpvVirtualLight,
     /// Texels per side of the blocks of a map summed into one VPL of the gathered V_ρ (a
-    /// power of two, 8–256; at most a map's side). Default 8: 4096 VPLs per 512² map, 256 per
-    /// probe light's 128² (region FLIP on lavapipe cornell 0.2141 / 0.1904 / 0.1861 with 32 /
-    /// 16 / 8, desk-bunny 0.1373 / 0.1305 / 0.1262).
+    /// power of two, 8–256; at most a map's side). Default 16: 1024 VPLs per 512² map, 16 per
+    /// probe light's 64². With the photo's light the maps light only what the camera does not
+    /// see, and 8 scores alike (region FLIP on lavapipe, desk-spot-real 0.1641 / 0.1649 with 8 /
+    /// 16, cornell 0.1743 / 0.1744) at 0.07 ms more on an H100 (desk-spot-virtual, 1080p);
+    /// without it 8 scored best (cornell 0.2141 / 0.1904 / 0.1861 with 32 / 16 / 8).
     pub gather_block: u32,
     /// With `virtual_light = "gathered"`: the real surfaces the camera sees light the virtual
     /// objects with the radiance the photo shows of them (every bounce of the real scene),
@@ -99,12 +103,12 @@ impl Default for DlpvSettings {
             propagation_steps: 32,
             direct_steps: 0,
             rsm_resolution: 512,
-            probe_rsm_resolution: 128,
+            probe_rsm_resolution: 64,
             probe_lights: 32,
             splat: DlpvSplat::Cell,
             sharp_probe_shadows_deg: 8.4,
             virtual_light: DlpvVirtualLight::Gathered,
-            gather_block: 8,
+            gather_block: 16,
             photo_bounce: true,
         }
     }

@@ -495,7 +495,7 @@ impl LightTransport for DlpvMethod {
         let stale_photo = std::mem::take(&mut self.stale_photo);
         // A new photo or camera alone: the maps are as they were, V_ρ is gathered again.
         if let (false, true, Some(rho)) = (self.stale, stale_photo, &self.rho) {
-            rec.compute(RhoGather::LABEL, |pass| rho.record(pass));
+            rho.record(rec);
         }
         if std::mem::take(&mut self.stale) {
             if let Some(rsm) = &self.scene_maps {
@@ -524,7 +524,7 @@ impl LightTransport for DlpvMethod {
             });
             if let Some(rho) = &self.rho {
                 rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
-                rec.compute(RhoGather::LABEL, |pass| rho.record(pass));
+                rho.record(rec);
             }
         }
         rec.compute(Self::LABEL, |pass| self.gather.record(pass));

@@ -8,6 +8,7 @@ use super::DlpvParams;
 use bytemuck::{Pod, Zeroable};
 use glam::{IVec3, UVec3, UVec4, Vec3, Vec4};
 use mrshade_gpu::shader::compute_pipeline_entry;
+use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -24,14 +25,15 @@ struct GatherVpl {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct GatherInfo {
-    /// x: VPLs in all; yzw: the first cell gathered.
-    vpls_first: UVec4,
+    /// x: chunks of the VPLs; yzw: the first cell gathered.
+    chunks_first: UVec4,
     /// xyz: cells gathered along each axis.
     size: UVec4,
 }
 
-/// The cells V_ρ is read from: those of the virtual content's box, two cells around it (the
-/// merge reads half a cell off a surface, trilinearly), within the volume; all of it without
+/// The cells V_ρ is read from: those of the virtual content's box and one cell around it (the
+/// merge reads half a cell off a surface, trilinearly: at most the next cell out), within the
+/// volume; all of it without
 /// virtual content. Other cells are never read (virtual pixels only) and left at zero.
 fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3, UVec3) {
     let res = params.info.x;
@@ -39,8 +41,8 @@ fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3,
     let origin = params.origin.truncate();
     let h = params.origin.w;
     let cell = |p: Vec3| ((p - origin) / h).floor().as_ivec3();
-    let first = (cell(lo) - 2).clamp(IVec3::ZERO, IVec3::splat(res as i32 - 1)).as_uvec3();
-    let last = (cell(hi) + 2).clamp(IVec3::ZERO, IVec3::splat(res as i32 - 1)).as_uvec3();
+    let first = (cell(lo) - 1).clamp(IVec3::ZERO, IVec3::splat(res as i32 - 1)).as_uvec3();
+    let last = (cell(hi) + 1).clamp(IVec3::ZERO, IVec3::splat(res as i32 - 1)).as_uvec3();
     (first, last + 1 - first)
 }
 
@@ -52,13 +54,17 @@ pub(super) struct RhoPhoto<'a> {
     pub internal_size: (u32, u32),
 }
 
-/// Pixels per side of the photo's tiles (rho_photo.wgsl) at `internal_size`: a power of two
-/// near a sixtieth of its height, 2 to 16 (so that a tile's footprint, not its pixel count,
-/// stays alike: 16-pixel tiles of a 160 × 120 image are a seventh of it).
+/// Pixels per side of the photo's tiles (rho_photo.wgsl) at `internal_size`: 40 rows of tiles
+/// whatever the size (2 to 64 pixels), so that a tile's footprint, not its pixel count, stays
+/// alike — 16-pixel tiles are a seventh of a 160 × 120 image and 8 160 VPLs at 1080p. Region
+/// FLIP on lavapipe at 640×480 with 60 / 40 / 30 rows: desk-spot-real 0.1619 / 0.1641 / 0.1693,
+/// cornell 0.1748 / 0.1743 / 0.1745.
 fn photo_tile(internal_size: (u32, u32)) -> u32 {
-    let t = (internal_size.1 / 60).clamp(2, 16);
-    1 << t.ilog2()
+    internal_size.1.div_ceil(PHOTO_TILE_ROWS).clamp(2, 64)
 }
+
+/// Rows of the photo's tiles.
+const PHOTO_TILE_ROWS: u32 = 40;
 
 /// One set of maps to sum into VPLs: its group and its workgroups (blocks along x and y,
 /// pairs); the photo's tiles last, with no pairs.
@@ -82,15 +88,24 @@ pub(super) struct RhoGather {
     camera_group: wgpu::BindGroup,
     sets: Vec<AggregateSet>,
     gather: wgpu::ComputePipeline,
+    gather_sum: wgpu::ComputePipeline,
     gather_group: wgpu::BindGroup,
     info: wgpu::Buffer,
-    vpl_count: u32,
+    /// The VPLs appended (cleared before the pass).
+    count: wgpu::Buffer,
+    /// Chunks the VPLs are gathered in (`rho_gather.wgsl`).
+    chunks: u32,
     /// The cells gathered (`cells_read`): their size.
     size: UVec3,
 }
 
+/// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
+const PARTIAL_BYTES: u64 = 32 << 20;
+
 impl RhoGather {
-    /// GPU timing label of both passes.
+    /// GPU timing label of the maps' and the photo's VPLs.
+    pub const VPLS_LABEL: &'static str = "dlpv-rho-vpls";
+    /// GPU timing label of the gather into V_ρ's cells.
     pub const LABEL: &'static str = "dlpv-rho-gather";
 
     /// `params`: the volumes' uniform; `volumes`: the accumulated volumes, V_ρ first;
@@ -116,6 +131,23 @@ impl RhoGather {
         let tiles = [photo.internal_size.0.div_ceil(tile), photo.internal_size.1.div_ceil(tile)];
         let map_vpls: u32 = counts.iter().sum();
         let total = map_vpls + tiles[0] * tiles[1];
+        let cells = (values.info.x as u64).pow(3);
+        let chunks = (PARTIAL_BYTES / (cells * 48)).clamp(1, 16) as u32;
+        let (first, size) = cells_read(virtual_box, values);
+        let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dlpv/rho_gather_info"),
+            contents: bytemuck::bytes_of(&GatherInfo {
+                chunks_first: UVec4::from((chunks, first)),
+                size: size.extend(0),
+            }),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let count = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/rho_vpl_count"),
+            size: 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let vpls = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/rho_vpls"),
             size: (total.max(1) as usize * std::mem::size_of::<GatherVpl>()) as u64,
@@ -132,6 +164,8 @@ impl RhoGather {
                 bind::storage(3, cs),
                 bind::storage_rw(4, cs),
                 bind::uniform(5, cs),
+                bind::storage_rw(6, cs),
+                bind::uniform(7, cs),
             ],
         );
         // The frame, the G-buffer's depth, normals and flags, the photo (rho_photo.wgsl).
@@ -165,19 +199,17 @@ impl RhoGather {
         let aggregate = compute_pipeline_entry(device, "dlpv/rho_aggregate", AGGREGATE_SHADER, "aggregate", &layouts);
         let photo_tiles =
             compute_pipeline_entry(device, "dlpv/rho_photo_tiles", AGGREGATE_SHADER, "photo_tiles", &layouts);
-        let mut first = 0;
         let mut sets: Vec<AggregateSet> = sets
             .iter()
-            .zip(sides.iter().zip(&counts))
+            .zip(&sides)
             .enumerate()
-            .map(|(k, (set, (&side, &count)))| {
+            .map(|(k, (set, &side))| {
                 let [lights, texels, pairs] = set.buffers;
                 let info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("dlpv/rho_set{k}_info")),
-                    contents: bytemuck::bytes_of(&UVec4::new(set.resolution, set.pairs, first, side)),
+                    contents: bytemuck::bytes_of(&UVec4::new(set.resolution, set.pairs, 0, side)),
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
-                first += count;
                 let group = bind::group(
                     device,
                     &format!("dlpv/rho_set{k}_group"),
@@ -189,6 +221,8 @@ impl RhoGather {
                         lights.as_entire_binding(),
                         vpls.as_entire_binding(),
                         info.as_entire_binding(),
+                        count.as_entire_binding(),
+                        gather_info.as_entire_binding(),
                     ],
                 );
                 AggregateSet { group, blocks: [set.resolution / side; 2], pairs: set.pairs }
@@ -200,7 +234,7 @@ impl RhoGather {
             let [lights, texels, pairs] = set_buffers.first().copied().unwrap_or([&vpls; 3]);
             let info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("dlpv/rho_photo_info"),
-                contents: bytemuck::bytes_of(&UVec4::new(0, 0, map_vpls, tile)),
+                contents: bytemuck::bytes_of(&UVec4::new(0, 0, 0, tile)),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let group = bind::group(
@@ -214,23 +248,34 @@ impl RhoGather {
                     lights.as_entire_binding(),
                     vpls.as_entire_binding(),
                     info.as_entire_binding(),
+                    count.as_entire_binding(),
+                    gather_info.as_entire_binding(),
                 ],
             );
             sets.push(AggregateSet { group, blocks: tiles, pairs: 0 });
         }
-        let total = if photo_set { total } else { map_vpls };
         let gather_layout = bind::layout(
             device,
             "dlpv/rho_gather_layout",
-            &[bind::uniform(0, cs), bind::storage(1, cs), bind::storage_rw(2, cs), bind::uniform(3, cs)],
+            &[
+                bind::uniform(0, cs),
+                bind::storage(1, cs),
+                bind::storage_rw(2, cs),
+                bind::uniform(3, cs),
+                bind::storage(4, cs),
+                bind::storage_rw(5, cs),
+            ],
         );
         let gather = compute_pipeline_entry(device, "dlpv/rho_gather", GATHER_SHADER, "gather", &[&gather_layout]);
-        let (first, size) = cells_read(virtual_box, values);
-        let info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("dlpv/rho_gather_info"),
-            contents: bytemuck::bytes_of(&GatherInfo { vpls_first: UVec4::from((total, first)), size: size.extend(0) }),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        let gather_sum =
+            compute_pipeline_entry(device, "dlpv/rho_gather_sum", GATHER_SHADER, "gather_sum", &[&gather_layout]);
+        let partials = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/rho_partials"),
+            size: chunks as u64 * cells * 48,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
         });
+
         let gather_group = bind::group(
             device,
             "dlpv/rho_gather_group",
@@ -239,32 +284,55 @@ impl RhoGather {
                 params.as_entire_binding(),
                 vpls.as_entire_binding(),
                 volumes.as_entire_binding(),
-                info.as_entire_binding(),
+                gather_info.as_entire_binding(),
+                count.as_entire_binding(),
+                partials.as_entire_binding(),
             ],
         );
-        Self { aggregate, photo_tiles, camera_group, sets, gather, gather_group, info, vpl_count: total, size }
+        Self {
+            aggregate,
+            photo_tiles,
+            camera_group,
+            sets,
+            gather,
+            gather_sum,
+            gather_group,
+            info: gather_info,
+            count,
+            chunks,
+            size,
+        }
     }
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
         let (first, size) = cells_read(virtual_box, values);
         self.size = size;
-        let info = GatherInfo { vpls_first: UVec4::from((self.vpl_count, first)), size: size.extend(0) };
+        let info = GatherInfo { chunks_first: UVec4::from((self.chunks, first)), size: size.extend(0) };
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
 
     /// Sums the maps into VPLs, then writes V_ρ (after the propagation, which leaves it).
-    pub fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        pass.set_bind_group(1, &self.camera_group, &[]);
-        for set in &self.sets {
-            pass.set_pipeline(if set.pairs > 0 { &self.aggregate } else { &self.photo_tiles });
-            pass.set_bind_group(0, &set.group, &[]);
-            pass.dispatch_workgroups(set.blocks[0], set.blocks[1], set.pairs.max(1));
-        }
+    pub fn record(&self, rec: &mut Recorder) {
+        rec.encoder.clear_buffer(&self.count, 0, None);
+        rec.compute(Self::VPLS_LABEL, |pass| {
+            pass.set_bind_group(1, &self.camera_group, &[]);
+            for set in &self.sets {
+                pass.set_pipeline(if set.pairs > 0 { &self.aggregate } else { &self.photo_tiles });
+                pass.set_bind_group(0, &set.group, &[]);
+                pass.dispatch_workgroups(set.blocks[0], set.blocks[1], set.pairs.max(1));
+            }
+        });
+        rec.compute(Self::LABEL, |pass| self.record_gather(pass));
+    }
+
+    fn record_gather(&self, pass: &mut wgpu::ComputePass<'_>) {
         pass.set_pipeline(&self.gather);
         pass.set_bind_group(0, &self.gather_group, &[]);
-        let groups = (self.size + 3) / 4;
-        pass.dispatch_workgroups(groups.x, groups.y, groups.z);
+        let blocks = (self.size + 3) / 4;
+        pass.dispatch_workgroups(blocks.x * blocks.y * blocks.z, self.chunks, 1);
+        pass.set_pipeline(&self.gather_sum);
+        pass.dispatch_workgroups(blocks.x, blocks.y, blocks.z);
     }
 }
 

@@ -7,9 +7,26 @@
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
 @group(0) @binding(2) var<storage, read> pairs: array<vec4u>;
 @group(0) @binding(3) var<storage, read> lights: array<Light>;
+// V_ρ's VPLs: a block's or a tile's appended where it holds any light.
 @group(0) @binding(4) var<storage, read_write> rho_vpls: array<GatherVpl>;
-// The maps' side, pairs, this set's (or the photo tiles') first VPL, texels per block side.
+// The maps' side, pairs, unused, texels (or pixels) per block side.
 @group(0) @binding(5) var<uniform> gather_info: vec4u;
+@group(0) @binding(6) var<storage, read_write> vpl_count: atomic<u32>;
+@group(0) @binding(7) var<uniform> cells_gathered: RhoGatherInfo;
+
+// Appends the VPL of `sum` if it holds any light and the cells gathered lie (partly) in front
+// of it (thread 0 of the workgroup, after the sums): a wall's outside, a floor's underside
+// light none of them (the gather's time is the VPLs' count times the cells').
+fn append(sum: Sum) {
+    if (all(sum.flux.rgb == vec3f(0.0))) { return; }
+    let vpl = to_vpl(sum);
+    let h = cell_side();
+    let half = 0.5 * h * vec3f(cells_gathered.size.xyz);
+    let centre = params.origin.xyz + h * vec3f(cells_gathered.chunks_first.yzw) + half;
+    let n = vpl.normal.xyz;
+    if (dot(n, centre - vpl.position.xyz) + dot(abs(n), half) <= 0.0) { return; }
+    rho_vpls[atomicAdd(&vpl_count, 1u)] = vpl;
+}
 
 // Texels (or pixels) summed: Σ reflected flux (rgb) and area (w); Σ w·position (xyz) and
 // Σ w (w); Σ w·normal, w the flux's luminance.
@@ -78,8 +95,5 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
         if (thread < stride) { partial[thread] = plus(partial[thread], partial[thread + stride]); }
         workgroupBarrier();
     }
-    if (thread == 0u) {
-        let blocks = res / side;
-        rho_vpls[gather_info.z + (block.z * blocks + block.y) * blocks + block.x] = to_vpl(partial[0]);
-    }
+    if (thread == 0u) { append(partial[0]); }
 }

@@ -2,9 +2,9 @@
 // camera image"): the real surfaces the camera sees light the virtual objects with the
 // radiance the photo shows of them, every bounce of the real scene in it, where the maps'
 // VPLs hold one (the virtual faces of cornell took 0.87–0.96 of the answer's light from
-// them). `photo_tiles`: one workgroup per tile of `gather_info.w`² pixels (internal size,
-// about a sixtieth of its height: 16 pixels at 1080 lines, 2 at 120), its real pixels summed
-// into one VPL: flux π·L·A per pixel (a Lambertian surface of radiance L, A
+// them). `photo_tiles`: one workgroup per tile of `gather_info.w`² pixels (internal size, a
+// fortieth of its height: 27 pixels at 1080 lines, 3 at 120), its real pixels summed into
+// one VPL: flux π·L·A per pixel (a Lambertian surface of radiance L, A
 // the pixel's footprint on it), flux-weighted position and normal. The maps' VPLs leave out
 // the texels the camera sees (`seen_by_camera`, used by `aggregate`), so that no surface
 // lights twice. A surface the camera does not see (behind a virtual object, off screen)
@@ -68,8 +68,5 @@ fn photo_tiles(@builtin(workgroup_id) tile: vec3u, @builtin(local_invocation_id)
         if (thread < stride) { partial[thread] = plus(partial[thread], partial[thread + stride]); }
         workgroupBarrier();
     }
-    if (thread == 0u) {
-        let tiles_across = (frame.size.x + side - 1u) / side;
-        rho_vpls[gather_info.z + tile.y * tiles_across + tile.x] = to_vpl(partial[0]);
-    }
+    if (thread == 0u) { append(partial[0]); }
 }

@@ -21,3 +21,11 @@ struct GatherVpl {
     // rgb: reflected flux (W); w: unused
     flux: vec4f,
 }
+
+// Mirrors `GatherInfo` in rho.rs: which cells are gathered.
+struct RhoGatherInfo {
+    // x: chunks of the VPLs; yzw: the first cell gathered
+    chunks_first: vec4u,
+    // xyz: cells gathered along each axis
+    size: vec4u,
+}
