@@ -47,23 +47,26 @@ struct VplShading {
 }
 
 // Visibility of VPL `index` at receiver `p` (normal `n`) past the casters of one atlas: 0 or
-// 1, or the transmittance of a transmissive nearest caster.
-// Offsets and biases keep a surface from shadowing itself; they are needed only where the
-// receiver's own surface is in the atlas (a real receiver in the real atlas, a virtual one
-// in the virtual atlas). Elsewhere they would only grow the other atlas's shadows, most
-// visibly where a virtual object touches the real surface it stands on.
-fn ism_visible(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_atlas: bool, photons: bool) -> f32 {
-    return ism_lookup(index, v, p, n, virtual_atlas, own_atlas, photons).visible;
-}
-
-// The visibility of ism_visible and the nearest caster's material + 1 where it blocks (0: none
-// or unknown).
+// 1, or the transmittance of a transmissive nearest caster; and the nearest caster's
+// material + 1 where it blocks (0: none or unknown).
 struct IsmLookup {
     visible: f32,
     caster: u32,
 }
 
-fn ism_lookup(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_atlas: bool, photons: bool) -> IsmLookup {
+// Where a lookup reads its atlas, before it reads it: the texel (0 where the point falls
+// outside the map: `valid` false) and the depth below which a stored caster blocks.
+// Offsets and biases keep a surface from shadowing itself; they are needed only where the
+// receiver's own surface is in the atlas (`own_atlas`: a real receiver in the real atlas, a
+// virtual one in the virtual atlas). Elsewhere they would only grow the other atlas's
+// shadows, most visibly where a virtual object touches the real surface it stands on.
+struct IsmProbe {
+    valid: bool,
+    texel: u32,
+    limit: f32,
+}
+
+fn ism_probe(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_atlas: bool) -> IsmProbe {
     let first = ism_project(v, p, ism, virtual_atlas);
     let extent = ism_texel_extent(v, first.depth, ism, virtual_atlas);
     // Depth bias against the quantisation of the other atlas's depths: half a texel for
@@ -88,16 +91,41 @@ fn ism_lookup(index: u32, v: Vpl, p: vec3f, n: vec3f, virtual_atlas: bool, own_a
         }
     }
     let c = ism_project(v, p + n * offset, ism, virtual_atlas);
-    if (!c.valid) { return IsmLookup(1.0, 0u); }
-    let i = ism_texel_index(index, c.uv, ism);
-    let stored = select(ism_real[i], ism_virtual[i], virtual_atlas);
-    if (ism_decode(stored) >= c.depth - limit_bias) { return IsmLookup(1.0, 0u); }
+    if (!c.valid) { return IsmProbe(false, 0u, 0.0); }
+    return IsmProbe(true, ism_texel_index(index, c.uv, ism), c.depth - limit_bias);
+}
+
+// The atlas word a probe reads.
+fn ism_read(probe: IsmProbe, virtual_atlas: bool) -> u32 {
+    if (virtual_atlas) { return ism_virtual[probe.texel]; }
+    return ism_real[probe.texel];
+}
+
+// What a probe's atlas word `stored` says.
+fn ism_result(probe: IsmProbe, stored: u32, v: Vpl, photons: bool) -> IsmLookup {
+    if (!probe.valid || ism_decode(stored) >= probe.limit) { return IsmLookup(1.0, 0u); }
     if (!ism_caster_known(stored)) { return IsmLookup(0.0, 0u); }
     let caster = ism_caster_material(stored);
     // The probe's light through a transmissive caster: its photons carry it when they fly
     // (RenderSettings::probe_caustics), else the shadow lets it through.
     let carried = vpl_kind(v) == VPL_DIRECTIONAL && photons;
     return IsmLookup(select(caster_transmittance(materials[caster]), 0.0, carried), caster + 1u);
+}
+
+// Both atlases' lookups of VPL `index` at receiver `p` (normal `n`; `real`: a real receiver),
+// their reads issued together: one after the other, each VPL of a pixel's loop waited on two
+// reads in turn.
+struct IsmPair {
+    real: IsmLookup,
+    virt: IsmLookup,
+}
+
+fn ism_pair(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool, photons: bool) -> IsmPair {
+    let a = ism_probe(index, v, p, n, false, real);
+    let b = ism_probe(index, v, p, n, true, !real);
+    let stored_a = ism_read(a, false);
+    let stored_b = ism_read(b, true);
+    return IsmPair(ism_result(a, stored_a, v, photons), ism_result(b, stored_b, v, photons));
 }
 
 // f_r · cos θ_l of the receiver toward a VPL. On a surface the specular stage traces (a mirror,
@@ -115,10 +143,8 @@ fn reflects_vpls(s: Surface, traced: bool) -> bool { return !traced || has_diffu
 
 // (V_r, V_v) of VPL `index` at receiver `p` with normal `n`, on a real or virtual surface.
 fn ism_visibility(index: u32, v: Vpl, p: vec3f, n: vec3f, real: bool, photons: bool) -> vec2f {
-    return vec2f(
-        ism_visible(index, v, p, n, false, real, photons),
-        ism_visible(index, v, p, n, true, !real, photons),
-    );
+    let pair = ism_pair(index, v, p, n, real, photons);
+    return vec2f(pair.real.visible, pair.virt.visible);
 }
 
 // The squared clamp distance of VPL `v` at squared distance `d2`: the multiple-bounce VPLs
@@ -161,8 +187,9 @@ fn vpl_light(s: Surface, traced: bool, r_p: f32, first: u32, step: u32, count: u
             let cos_theta = dot(s.normal, -v.position.xyz);
             if (cos_theta <= 0.0) { continue; }
             let w = v.power.rgb * cos_theta;
-            let v_r = ism_visible(i, v, p, s.normal, false, receiver_real, how.photons);
-            let virtual_caster = ism_lookup(i, v, p, s.normal, true, !receiver_real, how.photons);
+            let pair = ism_pair(i, v, p, s.normal, receiver_real, how.photons);
+            let v_r = pair.real.visible;
+            let virtual_caster = pair.virt;
             out.env_rv += w * min(v_r, virtual_caster.visible);
             out.env_r += w * v_r;
             out.env_weight += w;

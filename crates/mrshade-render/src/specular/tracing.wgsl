@@ -141,23 +141,27 @@ fn march_slices(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
     var prev_t = span.x;
     var prev_s = 0.0;
     var prev_valid = false;
+    // One sample ahead: the next sample's read is issued before this one is tested (each step
+    // of the march otherwise waited on its own read).
+    var c = slice_sample(ray, span.x);
     for (var i = 0u; i <= steps; i++) {
         let t = span.x + step * f32(i);
-        let c = slice_sample(ray, t);
-        if (c.texel.x == 0u) {
+        let here = c;
+        c = slice_sample(ray, span.x + step * f32(i + 1u));
+        if (here.texel.x == 0u) {
             prev_valid = false;
             prev_t = t;
             continue;
         }
-        if (prev_valid && (c.behind >= 0.0) != (prev_s >= 0.0)) {
+        if (prev_valid && (here.behind >= 0.0) != (prev_s >= 0.0)) {
             var a = prev_t;
             var b = t;
-            var triangle = c.texel.x;
+            var triangle = here.texel.x;
             for (var j = 0u; j < params.steps.z; j++) {
                 let mid = 0.5 * (a + b);
                 let m = slice_sample(ray, mid);
                 let sm = select(prev_s, m.behind, m.texel.x != 0u);
-                if ((sm >= 0.0) == (c.behind >= 0.0)) {
+                if ((sm >= 0.0) == (here.behind >= 0.0)) {
                     b = mid;
                     if (m.texel.x != 0u) { triangle = m.texel.x; }
                 } else {
@@ -170,7 +174,7 @@ fn march_slices(first: u32, origin: vec3f, dir: vec3f, t_max: f32) -> vec2f {
             }
         }
         prev_valid = true;
-        prev_s = c.behind;
+        prev_s = here.behind;
         prev_t = t;
     }
     return vec2f(0.0);
