@@ -175,6 +175,20 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             "dlpv volumes (dlpv.resolution³)",
             cells * (SOURCES as u64 * (CELL_BYTES + 2 * SCRATCH_CELL_BYTES) + 2 * VOLUMES * CELL_BYTES),
         ),
+        (
+            "dlpv gathered V_ρ (VPLs of the maps and the photo, partial sums)",
+            match d.virtual_light {
+                DlpvVirtualLight::Gathered => rho::bytes(
+                    &[
+                        (layers, (d.rsm_resolution as u64).pow(2)),
+                        (d.probe_lights as u64, (d.probe_rsm_resolution as u64).pow(2)),
+                    ],
+                    d.gather_block as u64,
+                    cells,
+                ),
+                DlpvVirtualLight::Propagated => 0,
+            },
+        ),
     ]
 }
 

@@ -21,7 +21,7 @@ struct GatherVpl {
     flux: Vec4,
 }
 
-/// Mirrors `RhoGatherInfo` in rho_gather.wgsl.
+/// Mirrors `RhoGatherInfo` in rho_vpl.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct GatherInfo {
@@ -33,8 +33,8 @@ struct GatherInfo {
 
 /// The cells V_ρ is read from: those of the virtual content's box and one cell around it (the
 /// merge reads half a cell off a surface, trilinearly: at most the next cell out), within the
-/// volume; all of it without
-/// virtual content. Other cells are never read (virtual pixels only) and left at zero.
+/// volume; all of it without virtual content. Other cells are never read (virtual pixels only)
+/// and left at zero.
 fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3, UVec3) {
     let res = params.info.x;
     let Some((lo, hi)) = virtual_box else { return (UVec3::ZERO, UVec3::splat(res)) };
@@ -65,6 +65,20 @@ fn photo_tile(internal_size: (u32, u32)) -> u32 {
 
 /// Rows of the photo's tiles.
 const PHOTO_TILE_ROWS: u32 = 40;
+
+/// GPU bytes of the gathered V_ρ: its VPLs (`pairs_texels`: the maps' pairs × texels per map,
+/// per set; the photo's tiles for images up to 4:1) and the gather's partial sums.
+pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64) -> u64 {
+    let vpl = std::mem::size_of::<GatherVpl>() as u64;
+    let map_vpls: u64 = pairs_texels.iter().map(|&(pairs, texels)| pairs * (texels / (block * block)).max(1)).sum();
+    let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
+    (map_vpls + photo_vpls) * vpl + chunks(cells) as u64 * cells * 48
+}
+
+/// Chunks the VPLs are gathered in: as many as `PARTIAL_BYTES` of partial sums hold, 1 to 16.
+fn chunks(cells: u64) -> u32 {
+    (PARTIAL_BYTES / (cells * 48)).clamp(1, 16) as u32
+}
 
 /// One set of maps to sum into VPLs: its group and its workgroups (blocks along x and y,
 /// pairs); the photo's tiles last, with no pairs.
@@ -132,7 +146,7 @@ impl RhoGather {
         let map_vpls: u32 = counts.iter().sum();
         let total = map_vpls + tiles[0] * tiles[1];
         let cells = (values.info.x as u64).pow(3);
-        let chunks = (PARTIAL_BYTES / (cells * 48)).clamp(1, 16) as u32;
+        let chunks = chunks(cells);
         let (first, size) = cells_read(virtual_box, values);
         let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dlpv/rho_gather_info"),
