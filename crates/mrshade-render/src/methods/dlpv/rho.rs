@@ -138,7 +138,6 @@ impl RhoGather {
     ) -> Self {
         let cs = wgpu::ShaderStages::COMPUTE;
         let sides: Vec<u32> = sets.iter().map(|s| block.min(s.resolution)).collect();
-        let set_buffers: Vec<[&wgpu::Buffer; 3]> = sets.iter().map(|s| s.buffers).collect();
         let counts: Vec<u32> =
             sets.iter().zip(&sides).map(|(s, side)| s.pairs * (s.resolution / side).pow(2)).collect();
         let tile = photo_tile(photo.internal_size);
@@ -213,47 +212,17 @@ impl RhoGather {
         let aggregate = compute_pipeline_entry(device, "dlpv/rho_aggregate", AGGREGATE_SHADER, "aggregate", &layouts);
         let photo_tiles =
             compute_pipeline_entry(device, "dlpv/rho_photo_tiles", AGGREGATE_SHADER, "photo_tiles", &layouts);
-        let mut sets: Vec<AggregateSet> = sets
-            .iter()
-            .zip(&sides)
-            .enumerate()
-            .map(|(k, (set, &side))| {
-                let [lights, texels, pairs] = set.buffers;
-                let info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(&format!("dlpv/rho_set{k}_info")),
-                    contents: bytemuck::bytes_of(&UVec4::new(set.resolution, set.pairs, 0, side)),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let group = bind::group(
-                    device,
-                    &format!("dlpv/rho_set{k}_group"),
-                    &aggregate_layout,
-                    &[
-                        params.as_entire_binding(),
-                        texels.as_entire_binding(),
-                        pairs.as_entire_binding(),
-                        lights.as_entire_binding(),
-                        vpls.as_entire_binding(),
-                        info.as_entire_binding(),
-                        count.as_entire_binding(),
-                        gather_info.as_entire_binding(),
-                    ],
-                );
-                AggregateSet { group, blocks: [set.resolution / side; 2], pairs: set.pairs }
-            })
-            .collect();
-        let photo_set = values.gathered.y == 1;
-        if photo_set {
-            // The photo's tiles after the maps' VPLs (their group's maps unread).
-            let [lights, texels, pairs] = set_buffers.first().copied().unwrap_or([&vpls; 3]);
+        // One group per set of maps (its texels, pairs, lights, and (side, pairs, 0, block)),
+        // and the photo's tiles with a set's maps bound unread.
+        let aggregate_group = |label: &str, [lights, texels, pairs]: [&wgpu::Buffer; 3], set_info: UVec4| {
             let info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("dlpv/rho_photo_info"),
-                contents: bytemuck::bytes_of(&UVec4::new(0, 0, 0, tile)),
+                label: Some(&format!("{label}_info")),
+                contents: bytemuck::bytes_of(&set_info),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let group = bind::group(
+            bind::group(
                 device,
-                "dlpv/rho_photo_group",
+                &format!("{label}_group"),
                 &aggregate_layout,
                 &[
                     params.as_entire_binding(),
@@ -265,8 +234,26 @@ impl RhoGather {
                     count.as_entire_binding(),
                     gather_info.as_entire_binding(),
                 ],
-            );
-            sets.push(AggregateSet { group, blocks: tiles, pairs: 0 });
+            )
+        };
+        let mut aggregate_sets: Vec<AggregateSet> = sets
+            .iter()
+            .zip(&sides)
+            .enumerate()
+            .map(|(k, (set, &side))| AggregateSet {
+                group: aggregate_group(
+                    &format!("dlpv/rho_set{k}"),
+                    set.buffers,
+                    UVec4::new(set.resolution, set.pairs, 0, side),
+                ),
+                blocks: [set.resolution / side; 2],
+                pairs: set.pairs,
+            })
+            .collect();
+        if values.gathered.y == 1 {
+            let maps = sets.first().map_or([&vpls; 3], |s| s.buffers);
+            let group = aggregate_group("dlpv/rho_photo", maps, UVec4::new(0, 0, 0, tile));
+            aggregate_sets.push(AggregateSet { group, blocks: tiles, pairs: 0 });
         }
         let gather_layout = bind::layout(
             device,
@@ -307,7 +294,7 @@ impl RhoGather {
             aggregate,
             photo_tiles,
             camera_group,
-            sets,
+            sets: aggregate_sets,
             gather,
             gather_sum,
             gather_group,

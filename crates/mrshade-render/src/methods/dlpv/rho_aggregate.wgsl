@@ -59,6 +59,18 @@ fn to_vpl(sum: Sum) -> GatherVpl {
     return out;
 }
 
+// The workgroup's sum of every invocation's `sum`, appended by invocation 0 (called by all
+// 64 invocations of a workgroup, from uniform control flow).
+fn append_workgroup_sum(thread: u32, sum: Sum) {
+    partial[thread] = sum;
+    workgroupBarrier();
+    for (var stride = THREADS / 2u; stride > 0u; stride = stride / 2u) {
+        if (thread < stride) { partial[thread] = plus(partial[thread], partial[thread + stride]); }
+        workgroupBarrier();
+    }
+    if (thread == 0u) { append(partial[0]); }
+}
+
 fn light_depth(light: Light, p: vec3f) -> f32 {
     if (light.info.x == LIGHT_DIRECTIONAL) { return dot(p, light.direction_real.xyz); }
     return distance(p, light.position.xyz);
@@ -89,11 +101,5 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             sum = plus(sum, texel_sum(real));
         }
     }
-    partial[thread] = sum;
-    workgroupBarrier();
-    for (var stride = THREADS / 2u; stride > 0u; stride = stride / 2u) {
-        if (thread < stride) { partial[thread] = plus(partial[thread], partial[thread + stride]); }
-        workgroupBarrier();
-    }
-    if (thread == 0u) { append(partial[0]); }
+    append_workgroup_sum(thread, sum);
 }

@@ -62,11 +62,5 @@ fn photo_tiles(@builtin(workgroup_id) tile: vec3u, @builtin(local_invocation_id)
             sum = plus(sum, pixel_sum(vec2i(tile.xy * side + vec2u(x, y))));
         }
     }
-    partial[thread] = sum;
-    workgroupBarrier();
-    for (var stride = THREADS / 2u; stride > 0u; stride = stride / 2u) {
-        if (thread < stride) { partial[thread] = plus(partial[thread], partial[thread + stride]); }
-        workgroupBarrier();
-    }
-    if (thread == 0u) { append(partial[0]); }
+    append_workgroup_sum(thread, sum);
 }
