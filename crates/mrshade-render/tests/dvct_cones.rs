@@ -289,3 +289,53 @@ fn a_small_balls_bounce_onto_the_floor_around_it_matches_the_path_tracer() {
     // Independent layers: 1.49 here; the mean of the two bounds 1.23.
     assert!((0.7..1.35).contains(&ratio), "the ball sends {ratio:.2} times the path tracer's light onto the floor");
 }
+
+#[test]
+fn a_virtual_lamps_light_off_a_real_box_beyond_the_volume_reaches_the_floor_as_the_path_tracer_says() {
+    // A virtual lamp lights a real box that lies outside the volume around a small virtual cube
+    // (twice its size) and inside the outer one: the floor in front of the box's lit face takes
+    // the box's bounce of that light. Only a virtual light changes surfaces beyond the virtual
+    // objects' volume; the cones of those surfaces saw only that volume before (cones.wgsl
+    // `trace_cone`) and took none of it, and the box's face, which looks away from the virtual
+    // cube, sent its light into the box (voxel_surface.wgsl `sending_side`): 0.41 of the path
+    // tracer's with the box inside the volume. Bounce light alone on both sides: `dvct` less
+    // `direct` (the same shadow-mapped direct light), the path tracer less its first bounce.
+    let scene = |method: &str, bounces: u32| {
+        let mut s = Setup::top_down(64);
+        s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.03, 0.0], 0.03, false).cube([-0.15, 0.05, 0.0], 0.05, true);
+        s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [-0.15, 0.25, 0.3], false);
+        dvct(&mut s, 64);
+        s.top_toml = format!("method = \"{method}\"\n");
+        s.extra_toml +=
+            &format!("photo_voxels = false\ntrace_block = 1\n[reference]\nspp = 256\nmax_bounces = {bounces}\n");
+        s
+    };
+    let (cones, direct) = (scene("dvct", 11).render(), scene("direct", 11).render());
+    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
+    let path_traced = |bounces| {
+        let (_dir, session) = scene("direct", bounces).session();
+        mrshade_reference::render_with(&session, None, &caustics, &|_, _| {})
+    };
+    let (all, first) = (path_traced(11), path_traced(1));
+    let (mut ours, mut theirs, mut pixels) = (0.0, 0.0, 0);
+    for y in 0..64 {
+        for x in 0..64 {
+            // The floor in front of the box's lit +z face, 1–10 cm from it, beyond the volume.
+            let p = cones.world_on_plane(x, y, 0.0);
+            if !(-0.19..-0.11).contains(&p.x) || !(0.06..0.15).contains(&p.z) {
+                continue;
+            }
+            let change = |r: &common::Rendered| r.l_rv(x, y).x - r.l_r(x, y).x;
+            ours += change(&cones) - change(&direct);
+            let reference_change = |r: &mrshade_reference::ReferenceImage| r.l_rv.get(x, y)[0] - r.l_r.get(x, y)[0];
+            theirs += reference_change(&all) - reference_change(&first);
+            pixels += 1;
+        }
+    }
+    eprintln!(
+        "the lamp's light off the box on the floor ({pixels} pixels): ours {ours:.4}, the path tracer's {theirs:.4}"
+    );
+    assert!(pixels > 10 && theirs > 0.0, "{pixels} pixels, the reference's bounce {theirs}");
+    let ratio = ours / theirs;
+    assert!((0.6..1.6).contains(&ratio), "the box sends {ratio:.2} times the path tracer's light onto the floor");
+}

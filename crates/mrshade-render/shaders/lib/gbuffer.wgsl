@@ -29,6 +29,7 @@ struct Material {
 }
 
 fn is_traced(m: Material) -> bool { return m.texture_info.w != 0u; }
+fn is_double_sided(m: Material) -> bool { return m.texture_info.z == 1u; }
 
 // The base color of a VPL on material `m` (base color `base`, metalness `metallic`): glTF's
 // transmission takes its share from the dielectric's diffuse lobe (KHR_materials_transmission),

@@ -224,7 +224,12 @@ impl Scene {
 
     /// Whether anything virtual is in the scene (objects or lights).
     pub fn has_virtual_content(&self) -> bool {
-        self.instances.iter().any(|i| i.realness == Realness::Virtual)
-            || self.lights.iter().any(|l| l.realness == Realness::Virtual)
+        self.instances.iter().any(|i| i.realness == Realness::Virtual) || self.has_virtual_lights()
+    }
+
+    /// Whether the scene holds a virtual light: its change then reaches every real surface it
+    /// lights, not only those around the virtual objects.
+    pub fn has_virtual_lights(&self) -> bool {
+        self.lights.iter().any(|l| l.realness == Realness::Virtual)
     }
 }

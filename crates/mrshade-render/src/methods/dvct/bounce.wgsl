@@ -31,9 +31,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let virt = voxels[index * 2u + 1u];
     if (real != 0u) {
         var s = voxel_surface(voxel_triangle(real), centre);
-        // A real proxy's side that matters is the one facing the virtual content (the
-        // volume's centre): a room's walls gather inward whichever way their normals point.
-        s.normal = select(-s.normal, s.normal, dot(s.normal, toward_centre(s.position)) >= 0.0);
+        // On the side that sends out its light (voxel_surface.wgsl).
+        s.normal = sending_side(s);
         // Turning the voxels' cones by voxel changed nothing (their mipmaps blend them anyway).
         let e = gather_diffuse(s.position, s.normal, bounce_spacing(), 0.0);
         rv += vec4f(s.albedo / PI * (e.rv + e.env_rv), 0.0);

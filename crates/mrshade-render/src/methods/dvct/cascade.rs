@@ -4,7 +4,7 @@
 //! `dvct.outer_resolution` voxels per side, that cones go on through when they leave the first
 //! (cones.wgsl).
 
-use super::volume::{self, RawPair, VolumePair, VolumeParams, VoxelNormals, levels};
+use super::volume::{RawPair, VolumePair, VolumeParams, VoxelNormals, levels};
 use crate::methods::around::place;
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::settings::DvctSettings;
@@ -37,7 +37,7 @@ pub struct Cascade {
 
 impl Cascade {
     /// The cascade of `extent` × the virtual content's largest edge and `res` voxels per side
-    /// (`label`: its GPU objects' prefix).
+    /// (`label`: its GPU objects' prefix), `flags` its uniform's bits (`volume::flags`).
     pub fn new(
         device: &wgpu::Device,
         label: &str,
@@ -45,11 +45,12 @@ impl Cascade {
         (extent, res): (f32, u32),
         boxes: Boxes,
         triangles: u32,
+        flags: u32,
     ) -> Self {
         let (origin, side) = place(boxes.0, boxes.1, extent);
         let params = VolumeParams {
             origin: origin.extend(side / res as f32),
-            info: UVec4::new(res, levels(res), triangles, volume::flags(settings)),
+            info: UVec4::new(res, levels(res), triangles, flags),
             cone: Vec4::new(
                 settings.diffuse_aperture,
                 settings.trace_block as f32,

@@ -147,24 +147,38 @@ fn stretch(s: vec4f, k: f32) -> vec4f {
 // outer one, for a cone that starts inside the volume), its samples kept clear of the
 // plane of normal `n` through the surface it leaves. Outside the volumes there is nothing:
 // what a cone does not hit there is the probe's (its opacity says how much). A cone from
-// outside the volume sees only the volume (where the virtual content is: the two solutions
-// differ nowhere else), the pixels that the outer volume alone holds costing no more than
-// without it.
+// outside the volume sees only the volume where the virtual objects alone make the change
+// (the two solutions differ nowhere else), the pixels that the outer volume alone holds
+// costing no more than without it. A virtual light changes every real surface it lights, in
+// the volume or not: with one in the scene (VOLUME_VIRTUAL_LIGHTS) such a cone goes through
+// the outer volume up to this one, across it, and on through the outer one — the real desk
+// around desk-spot-virtual's sphere took none of the light its virtual lamp sends off the
+// real box and book beyond the sphere's volume.
 fn trace_cone(o: vec3f, d: vec3f, aperture: f32, spacing: f32, start: f32, n: vec3f) -> Cone {
     // Zero-initialised: nothing seen yet.
     var out: Cone;
     let lift = CONE_START_VOXELS * voxel_side();
-    let exit = march(&out, params, true, o, d, aperture, spacing, start, n, lift);
     let lo = params.origin.xyz;
-    if (all(o >= lo) && all(o <= lo + volume_side())) {
-        march(&out, outer, false, o, d, aperture, spacing, max(start, exit), n, lift);
+    let inside = all(o >= lo) && all(o <= lo + volume_side());
+    if (!inside && (params.info.w & VOLUME_VIRTUAL_LIGHTS) != 0u) {
+        let span = volume_span(params, o, d);
+        let meets = span.x < span.y && span.y > start;
+        march(&out, outer, false, o, d, aperture, spacing, start, select(NO_STOP, span.x, meets), n, lift);
+        if (!meets) { return out; }
+    }
+    let exit = march(&out, params, true, o, d, aperture, spacing, start, NO_STOP, n, lift);
+    if (inside || (params.info.w & VOLUME_VIRTUAL_LIGHTS) != 0u) {
+        march(&out, outer, false, o, d, aperture, spacing, max(start, exit), NO_STOP, n, lift);
     }
     return out;
 }
 
+// No end to a march but its volume's own.
+const NO_STOP: f32 = 3.0e38;
+
 // The part of trace_cone in volume `v` (`inner`: the pass's own volume, else the outer one),
-// from `start`; returns where the cone leaves `v`. `lift`: the height above the plane of `n`
-// that the cone starts at.
+// from `start` to where it leaves `v` or reaches `stop`; returns where it leaves `v`. `lift`:
+// the height above the plane of `n` that the cone starts at.
 fn march(
     out: ptr<function, Cone>,
     v: VolumeParams,
@@ -174,10 +188,12 @@ fn march(
     aperture: f32,
     spacing: f32,
     start: f32,
+    stop: f32,
     n: vec3f,
     lift: f32,
 ) -> f32 {
-    let span = volume_span(v, o, d);
+    let whole = volume_span(v, o, d);
+    let span = vec2f(whole.x, min(whole.y, stop));
     let voxel = v.origin.w;
     let max_lod = f32(v.info.y - 1u);
     let extent = 1.0 / (voxel * f32(v.info.x));
@@ -231,7 +247,7 @@ fn march(
         (*out).r += (1.0 - (*out).r.a) * s_r;
         t += step;
     }
-    return span.y;
+    return whole.y;
 }
 
 // The light of sample `s` (premultiplied) on the part of the cone it covers beyond `peak`, the

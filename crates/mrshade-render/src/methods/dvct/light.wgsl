@@ -67,9 +67,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let virt = voxels[index * 2u + 1u];
     if (real != 0u) {
         let s = voxel_surface(voxel_triangle(real), centre);
-        // A real proxy's side that sends out light is the one facing the virtual content (the
-        // volume's centre), as the second bounce gathers it (bounce.wgsl).
-        n_r = select(-s.normal, s.normal, dot(s.normal, toward_centre(s.position)) >= 0.0);
+        // The side of the real surface that sends out its light, as the second bounce gathers
+        // on it (bounce.wgsl).
+        n_r = sending_side(s);
         let lit = first_bounce(s);
         rv = vec4f(lit.rv, 1.0);
         r = vec4f(lit.r, 1.0);

@@ -170,10 +170,11 @@ impl DvctMethod {
         let scene_box = session.scene.bounds();
         let boxes = (g.virtual_box(), scene_box);
         let inner = (settings.extent, settings.resolution);
-        let mut cascades = vec![Cascade::new(device, "dvct", settings, inner, boxes, g.triangle_count)];
+        let flags = volume::flags(settings, session.scene.has_virtual_lights());
+        let mut cascades = vec![Cascade::new(device, "dvct", settings, inner, boxes, g.triangle_count, flags)];
         if settings.outer_scale > 1.0 {
             let outer = (settings.extent * settings.outer_scale, settings.outer_voxels());
-            cascades.push(Cascade::new(device, "dvct/outer", settings, outer, boxes, g.triangle_count));
+            cascades.push(Cascade::new(device, "dvct/outer", settings, outer, boxes, g.triangle_count, flags));
         }
         let outermost = cascades.last().expect("one cascade");
 

@@ -17,10 +17,6 @@
 @group(2) @binding(10) var gbuffer_flags: texture_2d<u32>;
 @group(2) @binding(11) var photo_texture: texture_2d<f32>;
 
-// Bits of VolumeParams.info.w.
-const VOLUME_SINGLE_BOUNCE: u32 = 1u;
-const VOLUME_PHOTO: u32 = 2u;
-
 // The radiance the photo shows of the real surface at `p` with normal `n` (either side), in w
 // whether it shows it: the camera's pixel there is a real surface whose normal is alike and
 // whose tangent plane passes within a voxel and a half of `p`.

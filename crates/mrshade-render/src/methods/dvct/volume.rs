@@ -18,11 +18,12 @@ pub struct VolumeParams {
     pub cone: Vec4,
 }
 
-/// `VolumeParams.info.w` of `settings` (photo.wgsl's bits): 1 when the first bounce is the
-/// last (it then takes the probe's light), 2 when the real voxels the camera sees take the
-/// photo's light.
-pub fn flags(settings: &DvctSettings) -> u32 {
-    (settings.bounces == 1) as u32 | (settings.photo_voxels as u32) << 1
+/// `VolumeParams.info.w` (volume.wgsl's bits): 1 when the first bounce is the last (it then
+/// takes the probe's light), 2 when the real voxels the camera sees take the photo's light, 4
+/// when the scene holds a virtual light (`virtual_lights`): cones from surfaces outside the
+/// volume then go through the outer one too, where that light's change also lies.
+pub fn flags(settings: &DvctSettings, virtual_lights: bool) -> u32 {
+    (settings.bounces == 1) as u32 | (settings.photo_voxels as u32) << 1 | (virtual_lights as u32) << 2
 }
 
 /// Format of the volumes: premultiplied radiance and opacity.

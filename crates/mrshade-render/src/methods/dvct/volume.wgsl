@@ -4,13 +4,19 @@
 struct VolumeParams {
     // xyz: world position of the volume's lower corner; w: voxel side (m)
     origin: vec4f,
-    // voxels per side, mip levels, triangles, bits: VOLUME_SINGLE_BOUNCE (the first bounce is
-    // the last and takes the probe's light), VOLUME_PHOTO (photo.wgsl)
+    // voxels per side, mip levels, triangles, VOLUME_* bits
     info: vec4u,
     // diffuse cone aperture (diameter / length), pixels per side of a trace texel (texel.wgsl),
     // the pixels' and the second bounce's cone sample spacing (cones.wgsl)
     cone: vec4f,
 }
+
+// Bits of VolumeParams.info.w: the first bounce is the last and takes the probe's light; the
+// real voxels the camera sees take the photo's light (photo.wgsl); the scene holds a virtual
+// light, whose change reaches beyond this volume (cones.wgsl trace_cone).
+const VOLUME_SINGLE_BOUNCE: u32 = 1u;
+const VOLUME_PHOTO: u32 = 2u;
+const VOLUME_VIRTUAL_LIGHTS: u32 = 4u;
 
 fn voxel_side() -> f32 { return params.origin.w; }
 fn volume_side() -> f32 { return params.origin.w * f32(params.info.x); }

@@ -336,7 +336,7 @@ fn environment_bounce(slot: u32, b: BounceSlot, lane: u32) -> Vpl {
     var n = p.normal;
     let both = environment_irradiance(p.position, p.normal, lane);
     var e = Irradiance(both.rv, both.r, vec3f(0.0), vec3f(0.0));
-    if (m.texture_info.z == 1u && luminance(both.back_rv) > luminance(both.rv)) {
+    if (is_double_sided(m) && luminance(both.back_rv) > luminance(both.rv)) {
         n = -p.normal;
         e = Irradiance(both.back_rv, both.back_r, vec3f(0.0), vec3f(0.0));
     }
