@@ -162,6 +162,7 @@ fn set_overrides_are_as_strict_as_the_file() {
     assert!(error(&path, &set(&["composite.mode=\"multiply\""])).contains("multiply"));
     assert!(error(&path, &set(&["dvct.resolution=100"])).contains("`dvct.resolution` must be a power of two"));
     assert!(error(&path, &set(&["dvct.voxels=64"])).contains("voxels"));
+    assert!(error(&path, &set(&["dvct.virtual_rays=300"])).contains("`dvct.virtual_rays` must be at most 256 rays"));
     assert!(error(&path, &set(&["dlpv.probe_lights=6"])).contains("`dlpv.probe_lights` must be 0 or a power of two"));
     assert!(error(&path, &set(&["dlpv.cells=32"])).contains("cells"));
     assert!(error(&path, &set(&["dlpv.probe_rsm_resolution=100"])).contains("`dlpv.probe_rsm_resolution`"));

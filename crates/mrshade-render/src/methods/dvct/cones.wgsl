@@ -373,14 +373,61 @@ fn gather_diffuse(p: vec3f, n: vec3f, spacing: f32, turn: f32) -> Gathered {
     let tb = cones_frame(n, turn);
     for (var k = 0u; k < DIFFUSE_CONES; k++) {
         let c = diffuse_cone(n, tb, k);
-        let seen = cone_seen(trace_cone(o, c.xyz, params.cone.x, spacing, voxel_side(), n));
-        out.rv += c.w * seen.rv;
-        out.r += c.w * seen.r;
-        let w = c.w * env_radiance_at(frame, c.xyz, CONE_PROBE_ROUGHNESS);
-        let hidden = seen.hidden;
-        out.env_rv += w * (1.0 - hidden.x);
-        out.env_r += w * (1.0 - hidden.y);
-        out.env += w;
+        gather_seen(&out, c.xyz, c.w, cone_seen(trace_cone(o, c.xyz, params.cone.x, spacing, voxel_side(), n)));
     }
     return out;
 }
+
+// Adds what a cone or ray along `d` of weight `weight` saw to `out`.
+fn gather_seen(out: ptr<function, Gathered>, d: vec3f, weight: f32, seen: ConeSeen) {
+    (*out).rv += weight * seen.rv;
+    (*out).r += weight * seen.r;
+    let w = weight * env_radiance_at(frame, d, CONE_PROBE_ROUGHNESS);
+    (*out).env_rv += w * (1.0 - seen.hidden.x);
+    (*out).env_r += w * (1.0 - seen.hidden.y);
+    (*out).env += w;
+}
+
+// Rays a virtual surface's trace texel gathers with in place of the nine cones (settings
+// `dvct.virtual_rays`, which its pipeline sets; 0: the cones).
+override VIRTUAL_RAYS: u32 = 0u;
+
+// What VIRTUAL_RAYS thin rays of a surface at `p` (normal `n`) gather, as gather_diffuse's
+// cones do: cosine distributed (each of weight π / rays) in a golden-angle spiral turned by
+// `turn` as the cones are, marched through the voxels themselves (as wide as a voxel at
+// twice the volume's side: level 0 all the way), a voxel at a time. The nine wide cones read
+// the room through its prefiltered levels, where the lit wall beside a virtual block, that
+// wall's edge against the open sky and the floor in the block's shadow blend into coarse
+// cells: a streak ran across the front of cornell's tall block where the cones' coarse
+// samples crossed the red wall's front edge, and its face towards the red wall took 0.83 of
+// the answer's red (rays: 0.93). Nine thin rays alone scored far worse (cornell 0.159 against
+// the cones' 0.132): it takes both the voxels' resolution and a finer spacing than nine
+// directions; 32 rays 0.15 wide on every pixel kept little of the gain (0.126 against 0.108
+// this thin). They cost what a cone does per voxel they cross: 32 took a moving 1080p cornell
+// frame on an H100 from 2.85 to 4.76 ms (docs/benchmarks.md).
+fn gather_rays(p: vec3f, n: vec3f, turn: f32) -> Gathered {
+    var out = Gathered(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
+    let o = p + n * (RAY_START_VOXELS * voxel_side());
+    let tb = cones_frame(n, turn);
+    let aperture = 1.0 / f32(params.info.x);
+    let weight = PI / f32(max(VIRTUAL_RAYS, 1u));
+    for (var k = 0u; k < VIRTUAL_RAYS; k++) {
+        // Equal areas of the disc that projects onto the cosine-weighted hemisphere.
+        let u = (f32(k) + 0.5) / f32(VIRTUAL_RAYS);
+        let a = f32(k) * GOLDEN_ANGLE;
+        let disc = sqrt(u) * vec2f(cos(a), sin(a));
+        let d = normalize(tb[0] * disc.x + tb[1] * disc.y + n * sqrt(max(1.0 - u, 0.0)));
+        gather_seen(&out, d, weight, cone_seen(trace_cone(o, d, aperture, pixel_spacing(), voxel_side(), n)));
+    }
+    return out;
+}
+
+const GOLDEN_ANGLE: f32 = 2.39996323;
+
+// Where the rays start, in voxels off the surface: a voxelised surface is a shell up to a
+// voxel thick around it, and a thin ray's trilinear samples read a voxel either side, so that
+// from one voxel off the rays of a ball's rim gathered its own light sideways (twice the path
+// tracer's bounce light from the lit floor below it; from 1.5 voxels on, 0.81, 2 voxels 0.79,
+// 3 voxels 0.77: tests/dvct_cones.rs). The cones keep CONE_START_VOXELS, which their wider
+// samples were tuned with.
+const RAY_START_VOXELS: f32 = 1.5;

@@ -62,7 +62,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let flags = textureLoad(gbuffer_flags, pixel, 0).r;
     let s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
-    let e = gather_diffuse(s.position, s.normal, pixel_spacing(), cone_turn(texel));
+    // Virtual surfaces gather with thin rays where `dvct.virtual_rays` asks for them
+    // (cones.wgsl gather_rays), real ones with the cones: they make up most of the frame.
+    var e: Gathered;
+    if (VIRTUAL_RAYS > 0u && !is_real(flags)) {
+        e = gather_rays(s.position, s.normal, cone_turn(texel));
+    } else {
+        e = gather_diffuse(s.position, s.normal, pixel_spacing(), cone_turn(texel));
+    }
     // Zero-initialised: no glossy light on traced surfaces.
     var glossy: Cone;
     if (!is_traced(m)) {

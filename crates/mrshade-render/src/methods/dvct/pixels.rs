@@ -8,7 +8,7 @@ use crate::methods::probe_maps::ProbeMaps;
 use crate::methods::{IndirectLight, MethodInputs, indirect_light};
 use crate::scene_gpu::GpuProbe;
 use mrshade_gpu::bind;
-use mrshade_gpu::shader::compute_pipeline;
+use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_with};
 use mrshade_gpu::timing::Dispatch;
 
 /// The per-pixel passes and what they write.
@@ -85,11 +85,13 @@ impl PixelPasses {
         let mut resources = scene.probe.resources().to_vec();
         resources.extend(probe_maps.resources());
         let trace_probe_group = bind::group(device, "dvct/trace_probe_group", &trace_probe_layout, &resources);
-        let trace = compute_pipeline(
+        let trace = compute_pipeline_with(
             device,
             "dvct/cones",
             GATHER_SHADER,
+            "cs_main",
             &[&gbuffer_layout, volume_layout, &traced_layout, &trace_probe_layout],
+            &[("VIRTUAL_RAYS", settings.virtual_rays as f64)],
         );
         let trace_groups = vec![gbuffer_group.clone(), volumes, traced_group, trace_probe_group];
         let mut entries = IndirectLight::sampled_entries(0).to_vec();
