@@ -247,6 +247,23 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_on_the_real_floor_t
     assert!(cones_shadow > shadow_rv + 0.2, "the cones alone keep the shadow: {cones_shadow:.3}");
 }
 
+/// A white virtual ball (5 cm, `segments` around) centred `height` above a real grey floor, a
+/// real lamp of 0.25 W/sr at `lamp`, seen from 35 cm above the floor (7 mm pixels, 64²), as a
+/// `dvct` session of 128³ voxels.
+fn ball_over_floor(height: f32, segments: u32, lamp: [f32; 3]) -> Setup {
+    let mut s = Setup::top_down(64);
+    s.gltf.patch_node(0, |n| n["translation"] = serde_json::json!([0.0, 0.35, 0.0]));
+    s.plane(2.0, 0.0, 0.5, true);
+    let white = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
+    let ball = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.05, segments), Some(white), true);
+    s.gltf.node(
+        serde_json::json!({"name": "ball", "mesh": ball, "translation": [0.0, height, 0.0], "extras": {"real": false}}),
+    );
+    s.light(serde_json::json!({"type": "point", "intensity": 0.25}), lamp, true);
+    dvct(&mut s, 128);
+    s
+}
+
 #[test]
 fn a_small_balls_bounce_onto_the_floor_around_it_matches_the_path_tracer() {
     // A white virtual ball (5 cm) on a real grey floor, lit by a real lamp to its −x side, no
@@ -255,17 +272,7 @@ fn a_small_balls_bounce_onto_the_floor_around_it_matches_the_path_tracer() {
     // the ball meets it sample after sample in the same part of the cone; compositing those
     // samples as independent layers counted its light 1.5 times here (2–3 times farther out,
     // 7–15 cm from it: cones.wgsl `cone_seen`).
-    let mut s = Setup::top_down(64);
-    // 35 cm above the floor: 7 mm pixels.
-    s.gltf.patch_node(0, |n| n["translation"] = serde_json::json!([0.0, 0.35, 0.0]));
-    s.plane(2.0, 0.0, 0.5, true);
-    let white = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
-    let ball = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.05, 24), Some(white), true);
-    s.gltf.node(
-        serde_json::json!({"name": "ball", "mesh": ball, "translation": [0.0, 0.05, 0.0], "extras": {"real": false}}),
-    );
-    s.light(serde_json::json!({"type": "point", "intensity": 0.25}), [-0.15, 0.35, 0.0], true);
-    dvct(&mut s, 128);
+    let mut s = ball_over_floor(0.05, 24, [-0.15, 0.35, 0.0]);
     s.extra_toml += "photo_voxels = false\n[reference]\nspp = 128\n";
     let r = s.render();
     let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
@@ -290,6 +297,19 @@ fn a_small_balls_bounce_onto_the_floor_around_it_matches_the_path_tracer() {
     assert!((0.7..1.35).contains(&ratio), "the ball sends {ratio:.2} times the path tracer's light onto the floor");
 }
 
+/// The path tracer's answer to the scene `setup(bounces)` makes with every bounce (11) and with
+/// the lights' and the probe's direct light alone (1): their difference is the bounce light.
+fn path_traced_and_first_bounce(
+    setup: impl Fn(u32) -> Setup,
+) -> (mrshade_reference::ReferenceImage, mrshade_reference::ReferenceImage) {
+    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
+    let path_traced = |bounces| {
+        let (_dir, session) = setup(bounces).session();
+        mrshade_reference::render_with(&session, None, &caustics, &|_, _| {})
+    };
+    (path_traced(11), path_traced(1))
+}
+
 #[test]
 fn a_virtual_lamps_light_off_a_real_box_beyond_the_volume_reaches_the_floor_as_the_path_tracer_says() {
     // A virtual lamp lights a real box that lies outside the volume around a small virtual cube
@@ -311,12 +331,7 @@ fn a_virtual_lamps_light_off_a_real_box_beyond_the_volume_reaches_the_floor_as_t
         s
     };
     let (cones, direct) = (scene("dvct", 11).render(), scene("direct", 11).render());
-    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
-    let path_traced = |bounces| {
-        let (_dir, session) = scene("direct", bounces).session();
-        mrshade_reference::render_with(&session, None, &caustics, &|_, _| {})
-    };
-    let (all, first) = (path_traced(11), path_traced(1));
+    let (all, first) = path_traced_and_first_bounce(|bounces| scene("direct", bounces));
     let (mut ours, mut theirs, mut pixels) = (0.0, 0.0, 0);
     for y in 0..64 {
         for x in 0..64 {
@@ -348,28 +363,14 @@ fn a_virtual_balls_rays_gather_the_light_of_the_lit_floor_below_it_as_the_path_t
     // less `direct`, the path tracer less its first bounce) with 32 rays of
     // `dvct.virtual_rays` and with the nine cones.
     let scene = |method: &str, bounces: u32, rays: u32| {
-        let mut s = Setup::top_down(64);
-        s.gltf.patch_node(0, |n| n["translation"] = serde_json::json!([0.0, 0.35, 0.0]));
-        s.plane(2.0, 0.0, 0.5, true);
-        let white = s.gltf.material(mrshade_testkit::gltf::lambert("ball", [0.8; 3]));
-        let ball = s.gltf.mesh(&mrshade_testkit::gltf::sphere(0.05, 32), Some(white), true);
-        s.gltf.node(
-            serde_json::json!({"name": "ball", "mesh": ball, "translation": [0.0, 0.08, 0.0], "extras": {"real": false}}),
-        );
-        s.light(serde_json::json!({"type": "point", "intensity": 0.25}), [0.12, 0.3, 0.0], true);
-        dvct(&mut s, 128);
+        let mut s = ball_over_floor(0.08, 32, [0.12, 0.3, 0.0]);
         s.top_toml = format!("method = \"{method}\"\n");
         s.extra_toml += &format!(
             "photo_voxels = false\ntrace_block = 1\nvirtual_rays = {rays}\n[reference]\nspp = 256\nmax_bounces = {bounces}\n"
         );
         s
     };
-    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
-    let path_traced = |bounces| {
-        let (_dir, session) = scene("direct", bounces, 0).session();
-        mrshade_reference::render_with(&session, None, &caustics, &|_, _| {})
-    };
-    let (all, first) = (path_traced(11), path_traced(1));
+    let (all, first) = path_traced_and_first_bounce(|bounces| scene("direct", bounces, 0));
     let direct = scene("direct", 11, 0).render();
     let bounce_light = |rays: u32| {
         let r = scene("dvct", 11, rays).render();
