@@ -315,3 +315,38 @@ fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own()
     let mean_own = own.iter().sum::<Vec3>() / own.len() as f32;
     assert!((mean_own.x - mean_own.z).abs() < 0.05 * mean_own.x, "without the photo the voxels hold {mean_own}");
 }
+
+#[test]
+fn a_real_surface_sends_its_light_from_its_front_and_a_double_sided_one_towards_the_content() {
+    // A real floor quad under a virtual cube, turned over (its front faces down, its back the
+    // cube). Single-sided (glTF culls its back: the inside of a closed object, the face of a
+    // box that looks away from the content), its voxels send out their light from its front;
+    // double-sided, from the side that faces the content (voxel_surface.wgsl `sending_side`).
+    // Every real surface was turned towards the content before: a real box's faces that look
+    // away from it shone into the box.
+    let sending_side = |double_sided: bool| {
+        let mut s = Setup::top_down(16);
+        let mut material = mrshade_testkit::gltf::lambert("floor", [0.5; 3]);
+        material["doubleSided"] = serde_json::json!(double_sided);
+        let material = s.gltf.material(material);
+        let mesh = s.gltf.mesh(&mrshade_testkit::gltf::quad(1.0), Some(material), true);
+        let over = mrshade_testkit::gltf::quat([1.0, 0.0, 0.0], std::f32::consts::PI);
+        s.gltf.node(serde_json::json!({"name": "floor", "mesh": mesh, "rotation": over, "extras": {"real": true}}));
+        s.cube([0.0, 0.1, 0.0], 0.1, false);
+        s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.1, 0.6, 0.0], true);
+        dvct(&mut s, 32);
+        let r = s.render();
+        let method = dvct_method(&r);
+        let normals = voxel_normals(&r, &method.normals().textures[1]);
+        let (sum, count) = voxel_words(&r)
+            .iter()
+            .zip(&normals)
+            .filter(|((_, real, _), _)| *real != 0)
+            .fold((Vec3::ZERO, 0), |(s, n), (_, normal)| (s + *normal, n + 1));
+        assert!(count > 100, "{count} real voxels");
+        sum / count as f32
+    };
+    let (single, double) = (sending_side(false), sending_side(true));
+    assert!(single.y < -0.9, "a single-sided floor facing down sends its light {single:?}");
+    assert!(double.y > 0.9, "a double-sided one sends it {double:?}, towards the cube above");
+}
