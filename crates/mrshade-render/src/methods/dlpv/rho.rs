@@ -72,12 +72,12 @@ pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64) -> u64 
     let vpl = std::mem::size_of::<GatherVpl>() as u64;
     let map_vpls: u64 = pairs_texels.iter().map(|&(pairs, texels)| pairs * (texels / (block * block)).max(1)).sum();
     let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
-    (map_vpls + photo_vpls) * vpl + chunks(cells) as u64 * cells * 48
+    (map_vpls + photo_vpls) * vpl + chunks(cells) as u64 * cells * PARTIAL_CELL_BYTES
 }
 
 /// Chunks the VPLs are gathered in: as many as `PARTIAL_BYTES` of partial sums hold, 1 to 16.
 fn chunks(cells: u64) -> u32 {
-    (PARTIAL_BYTES / (cells * 48)).clamp(1, 16) as u32
+    (PARTIAL_BYTES / (cells * PARTIAL_CELL_BYTES)).clamp(1, 16) as u32
 }
 
 /// One set of maps to sum into VPLs: its group and its workgroups (blocks along x and y,
@@ -115,6 +115,10 @@ pub(super) struct RhoGather {
 
 /// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
 const PARTIAL_BYTES: u64 = 32 << 20;
+
+/// Bytes of one cell's partial sum over one chunk (rho_gather.wgsl `partials`: a vec4f of SH
+/// coefficients per channel).
+const PARTIAL_CELL_BYTES: u64 = 3 * 16;
 
 impl RhoGather {
     /// GPU timing label of the maps' and the photo's VPLs.
@@ -272,7 +276,7 @@ impl RhoGather {
             compute_pipeline_entry(device, "dlpv/rho_gather_sum", GATHER_SHADER, "gather_sum", &[&gather_layout]);
         let partials = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/rho_partials"),
-            size: chunks as u64 * cells * 48,
+            size: chunks as u64 * cells * PARTIAL_CELL_BYTES,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });

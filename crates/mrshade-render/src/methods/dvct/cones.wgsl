@@ -160,14 +160,15 @@ fn trace_cone(o: vec3f, d: vec3f, aperture: f32, spacing: f32, start: f32, n: ve
     let lift = CONE_START_VOXELS * voxel_side();
     let lo = params.origin.xyz;
     let inside = all(o >= lo) && all(o <= lo + volume_side());
-    if (!inside && (params.info.w & VOLUME_VIRTUAL_LIGHTS) != 0u) {
+    let lit_beyond = (params.info.w & VOLUME_VIRTUAL_LIGHTS) != 0u;
+    if (!inside && lit_beyond) {
         let span = volume_span(params, o, d);
         let meets = span.x < span.y && span.y > start;
         march(&out, outer, false, o, d, aperture, spacing, start, select(NO_STOP, span.x, meets), n, lift);
         if (!meets) { return out; }
     }
     let exit = march(&out, params, true, o, d, aperture, spacing, start, NO_STOP, n, lift);
-    if (inside || (params.info.w & VOLUME_VIRTUAL_LIGHTS) != 0u) {
+    if (inside || lit_beyond) {
         march(&out, outer, false, o, d, aperture, spacing, max(start, exit), NO_STOP, n, lift);
     }
     return out;
