@@ -47,6 +47,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.bounces", Kind::Number),
     ("dvct.trace_block", Kind::Number),
     ("dvct.photo_voxels", Kind::Bool),
+    ("dvct.virtual_rays", Kind::Number),
     ("dlpv.resolution", Kind::Number),
     ("dlpv.propagation_steps", Kind::Number),
     ("dlpv.rsm_resolution", Kind::Number),
