@@ -232,7 +232,7 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_through_its_maps() 
     // A dim sky with a small bright sun 45° up toward −z over a real floor, a virtual cube
     // (10 cm) on it, in a volume of 8³ cells of 5 cm (as coarse, for the cube, as 32³ cells are
     // around a large object): with the sun's light shadowing real surfaces through its maps
-    // (`sharp_probe_shadows_deg`, the default) the floor keeps only the sky's share of its
+    // (`sharp_probe_shadows_deg`, 8.4° here) the floor keeps only the sky's share of its
     // light (L_rv/L_r) in the cube's sun shadow and nearly all of it 1 cm beside the shadow;
     // left to the volume's direct change (0, the thesis's), the shadow is blurred over the
     // cells, too light inside and darkening the floor beside it. Either way the cube takes
@@ -274,6 +274,49 @@ fn a_sun_in_the_probe_casts_the_virtual_objects_sharp_shadow_through_its_maps() 
     assert!(volume_beside < beside - 0.15, "the volume's shadow stops as sharply: {volume_beside:.3}");
     let (lo, hi) = (taken.min(volume_taken), taken.max(volume_taken));
     assert!(lo > 0.8 * hi, "the light taken from the floor: maps {taken:.3}, volume {volume_taken:.3}");
+}
+
+#[test]
+fn a_broad_light_in_the_probe_casts_the_soft_shadow_the_path_tracer_does() {
+    // A dim sky with a broad bright patch 34° across, 45° up toward −z, over a real floor, and a
+    // virtual 8 cm cube floating 8 cm above it: the floor under the cube's shadow against the
+    // path tracer's L_rv / L_r, through the shadow's core and out across its wide penumbra
+    // (maps 0.26 / 0.06 / 0.14 / 0.52 / 0.76 / 0.86 / 0.96 at z = 6–30 cm, the path tracer
+    // 0.31 / 0.09 / 0.13 / 0.51 / 0.72 / 0.87 / 0.96). The maps' test is soft by each light's
+    // angular radius (probe_maps.wgsl `probe_map_soft_occlusion`). Left to the volume's direct
+    // change (`sharp_probe_shadows_deg = 0`, the thesis's; before, every light broader than
+    // 8.4°), the shadow ends with the volume, twice the cube's size: none of it reaches z = 6 cm.
+    let setup = |sharp_deg: f32| {
+        let mut s = Setup::sun_over_floor();
+        s.gltf.patch_node(0, |n| n["translation"] = json!([0.0, 0.7, 0.0]));
+        s.size = (64, 64);
+        s.sun = Some([20.0; 3]);
+        s.sun_texels = 6;
+        s.cube([0.0, 0.12, 0.0], 0.04, false);
+        s.top_toml = "method = \"dlpv\"\n".into();
+        s.extra_toml += &format!("[dlpv]\nsharp_probe_shadows_deg = {sharp_deg}\n[reference]\nspp = 256\n");
+        s
+    };
+    let maps = setup(30.0).render();
+    let volume = setup(0.0).render();
+    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
+    let reference = mrshade_reference::render_with(&maps.session, None, &caustics, &|_, _| {});
+    let w = maps.radiance.rv.width;
+    let ratio = |r: &common::Rendered, x, y| r.l_rv(x, y).y / r.l_r(x, y).y;
+    let (mut worst, mut worst_volume): (f32, f32) = (0.0, 0.0);
+    // From the cube's edge (z = 0.04 seen from above) across the shadow.
+    for z in [0.06, 0.10, 0.14, 0.18, 0.22, 0.26, 0.30] {
+        let i = maps.floor_pixel(Vec3::new(0.0, 0.0, z));
+        let (x, y) = (i as u32 % w, i as u32 / w);
+        let (ours, theirs) = (ratio(&maps, x, y), reference.l_rv.get(x, y)[1] / reference.l_r.get(x, y)[1]);
+        let through_volume = ratio(&volume, x, y);
+        eprintln!("z {z:.2}: L_rv / L_r maps {ours:.3}, volume {through_volume:.3}, the path tracer's {theirs:.3}");
+        worst = worst.max((ours - theirs).abs());
+        worst_volume = worst_volume.max((through_volume - theirs).abs());
+    }
+    eprintln!("largest departure: maps {worst:.3}, volume {worst_volume:.3}");
+    assert!(worst < 0.1, "the maps' shadow departs from the path tracer's by {worst:.3}");
+    assert!(worst_volume > 0.5, "the volume's shadow reaches the path tracer's: {worst_volume:.3}");
 }
 
 #[test]

@@ -22,6 +22,8 @@ pub struct Setup {
     pub sky_only: bool,
     /// Radiance of a 2×2-texel sun in the probe, 45° above the horizon toward −z.
     pub sun: Option<[f32; 3]>,
+    /// The sun's side in the probe's texels (5.6° each; default 2), an even number up to 14.
+    pub sun_texels: u32,
     /// Radiance of the probe's half toward +x, if it differs from `probe`'s.
     pub probe_plus_x: Option<[f32; 3]>,
     /// Keys at the top of the session file (before any table).
@@ -46,6 +48,7 @@ impl Setup {
             probe: None,
             sky_only: false,
             sun: None,
+            sun_texels: 2,
             probe_plus_x: None,
             top_toml: "method = \"direct\"\n".into(),
             extra_toml,
@@ -101,10 +104,12 @@ impl Setup {
         toml += &self.top_toml;
         if let Some(c) = self.probe {
             let (sky_only, sun, plus_x) = (self.sky_only, self.sun, self.probe_plus_x);
+            let half = self.sun_texels / 2;
             // u = atan2(x, −z) / 2π = 0 toward −z (texel columns 63 and 0), 1/4 toward +x
-            // (columns 0–31 are the half toward +x); v = 45° / 180°.
+            // (columns 0–31 are the half toward +x); v = 45° / 180° (between rows 7 and 8).
+            let in_sun = move |x: u32, y: u32| (x < half || x >= 64 - half) && (8 - half..8 + half).contains(&y);
             write_exr(&d.join("probe.exr"), 64, 32, move |x, y| match (sun, plus_x) {
-                (Some(s), _) if (x == 63 || x == 0) && (y == 7 || y == 8) => s,
+                (Some(s), _) if in_sun(x, y) => s,
                 _ if sky_only && y >= 16 => [0.0; 3],
                 (_, Some(p)) if x < 32 => p,
                 _ => c,
