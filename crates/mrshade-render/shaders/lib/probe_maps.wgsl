@@ -161,6 +161,8 @@ fn probe_map_soft_occlusion(layer: u32, st: vec2f, height: f32, bias: f32, tan_r
     let res = f32(probe_info.y);
     let centre = probe_map_texel(layer, st);
     let search = min(PROBE_SOFT_SEARCH, tan_radius) * res;
+    // Outside the maps (most of a frame's pixels) nothing virtual stands toward the light.
+    if (centre < 0) { return 0.0; }
     if (search < 0.5) { return select(0.0, 1.0, probe_map_blocked(centre, height, bias)); }
     var sum = 0.0;
     var count = 0.0;
