@@ -50,6 +50,7 @@ const MODULES: &[(&str, &str)] = &[
     ("dlpv/inject", dlpv::INJECT_SHADER),
     ("dlpv/propagate", dlpv::PROPAGATE_SHADER),
     ("dlpv/merge", dlpv::GATHER_SHADER),
+    ("probe_maps/near", mrshade_render::methods::probe_maps::NEAR_SHADER),
 ];
 
 fn parse(name: &str, source: &str) -> naga::Module {

@@ -81,6 +81,12 @@ pub struct DlpvSettings {
     /// desk-mirror 0.1659 → 0.1540, desk-glass 0.1661 → 0.1865 (the maps take the glass for
     /// opaque). Hard maps at 30°: desk-bunny 0.1097, desk-spot-virtual 0.1208.
     pub sharp_probe_shadows_deg: f32,
+    /// Those lights' shadows soft by each light's angular radius (percentage-closer soft
+    /// shadows over the maps, default true) or hard (one map texel per light, as before the
+    /// twenty-fifth session). Soft costs 0.2–0.5 ms more per moving 1080p frame on an H100
+    /// (docs/benchmarks.md); hard scores desk-bunny 0.1097 and desk-spot-virtual 0.1208 (soft
+    /// 0.1049 / 0.1138; lavapipe).
+    pub soft_probe_shadows: bool,
     /// Where V_ρ, the virtual objects' light from the real scene, comes from: `gathered`
     /// (default) or `propagated` (the thesis's).
     pub virtual_light: DlpvVirtualLight,
@@ -112,6 +118,7 @@ impl Default for DlpvSettings {
             virtual_light: DlpvVirtualLight::Gathered,
             gather_block: 16,
             photo_bounce: true,
+            soft_probe_shadows: true,
         }
     }
 }

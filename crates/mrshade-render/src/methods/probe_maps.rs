@@ -12,8 +12,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::flags::Realness;
 use mrshade_core::settings::ShadowSettings;
+use mrshade_gpu::shader::compute_pipeline;
 use mrshade_gpu::timing::Recorder;
-use mrshade_gpu::{GpuContext, bind};
+use mrshade_gpu::{GpuContext, bind, wgsl};
 use mrshade_scene::Light;
 use wgpu::util::DeviceExt;
 
@@ -177,13 +178,88 @@ pub struct ProbeMaps {
     lookups: wgpu::Buffer,
     /// The shadow maps' side (pack_lights sizes the lights' texels to it).
     shadow_resolution: u32,
-    /// (lights, map side, 0, 0): the lookups carry the rest.
+    /// (lights, map side, the soft test's search reach in texels, 0): the lookups carry the rest.
     info: wgpu::Buffer,
     /// Stands in for the maps' heights when there are none.
     unused: wgpu::Buffer,
     /// Side of the maps.
     resolution: u32,
+    /// Per texel, the highest surface of its map within `soft_search_texels` (probe_maps_near.wgsl).
+    near: Option<NearPass>,
 }
+
+/// The soft shadow test's blocker search reaches this share of a map's side at most
+/// (shaders/lib/probe_maps_soft.wgsl): a blocker can stand the whole map's depth above a
+/// point (the maps span the volume's bounding sphere), so a light of angular radius θ needs
+/// res·tan θ texels; twelve taps over more than this miss a thin blocker.
+const SOFT_SEARCH_SHARE: f32 = 0.15;
+
+/// The blocker search's widest radius in texels of maps of side `resolution`.
+fn soft_search_texels(resolution: u32) -> u32 {
+    (SOFT_SEARCH_SHARE * resolution as f32).ceil() as u32
+}
+
+/// The maps' highest surface near each texel, as two passes (rows, then columns).
+struct NearPass {
+    pipeline: wgpu::ComputePipeline,
+    /// Rows: heights → `rows`; columns: `rows` → `near`.
+    groups: [wgpu::BindGroup; 2],
+    near: wgpu::Buffer,
+    resolution: u32,
+    layers: u32,
+}
+
+impl NearPass {
+    fn new(device: &wgpu::Device, label: &str, rsm: &RsmPass) -> Self {
+        let bytes = rsm.heights.size();
+        let buffer = |name: &str| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("{label}/{name}")),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        };
+        let (rows, near) = (buffer("probe_heights_rows"), buffer("probe_heights_near"));
+        let cs = wgpu::ShaderStages::COMPUTE;
+        let layout = bind::layout(
+            device,
+            &format!("{label}/probe_near_layout"),
+            &[bind::storage(0, cs), bind::storage_rw(1, cs), bind::uniform(2, cs)],
+        );
+        let pipeline = compute_pipeline(device, &format!("{label}/probe_near"), NEAR_SHADER, &[&layout]);
+        let reach = soft_search_texels(rsm.resolution) + 1;
+        let group = |axis: u32, source: &wgpu::Buffer, target: &wgpu::Buffer| {
+            let size = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label}/probe_near_size_{axis}")),
+                contents: bytemuck::bytes_of(&UVec4::new(rsm.resolution, rsm.layers, reach, axis)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            bind::group(
+                device,
+                &format!("{label}/probe_near_group_{axis}"),
+                &layout,
+                &[source.as_entire_binding(), target.as_entire_binding(), size.as_entire_binding()],
+            )
+        };
+        let groups = [group(0, &rsm.heights, &rows), group(1, &rows, &near)];
+        Self { pipeline, groups, near, resolution: rsm.resolution, layers: rsm.layers }
+    }
+
+    fn record(&self, rec: &mut Recorder) {
+        let groups = self.resolution.div_ceil(8);
+        rec.compute("probe-maps-near", |pass| {
+            pass.set_pipeline(&self.pipeline);
+            for group in &self.groups {
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(groups, groups, self.layers);
+            }
+        });
+    }
+}
+
+/// The near-surface passes' module.
+pub const NEAR_SHADER: &str = wgsl!("probe_maps_near.wgsl");
 
 impl ProbeMaps {
     /// The maps of side `resolution` around `cube` of `lights` (each with its angular radius,
@@ -229,10 +305,12 @@ impl ProbeMaps {
             bytemuck::cast_slice(&lookups),
             wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         );
-        let info = UVec4::new(pairs.len() as u32, resolution, 0, 0);
+        let info = UVec4::new(pairs.len() as u32, resolution, soft_search_texels(resolution), 0);
         let info = init("probe_info", bytemuck::bytes_of(&info), wgpu::BufferUsages::UNIFORM);
         let unused = init("no_probe_lights", &[0; 256], wgpu::BufferUsages::STORAGE);
+        let near = drawn.as_ref().map(|(_, rsm, _, _)| NearPass::new(device, label, rsm));
         Self {
+            near,
             drawn: drawn.map(|(set, rsm, _, _)| (set, rsm)),
             pair_list: pairs,
             pairs: pairs_buffer,
@@ -265,6 +343,9 @@ impl ProbeMaps {
         if let Some((_, rsm)) = &self.drawn {
             rsm.record_maps(rec, rasterizer, false);
         }
+        if let Some(near) = &self.near {
+            near.record(rec);
+        }
     }
 
     /// The lights, the maps' texels and the pairs (`dlpv` injects the texels), and how many
@@ -275,17 +356,29 @@ impl ProbeMaps {
     }
 
     /// The layout entries of `resources()`, bindings `first`… (compute).
-    pub fn layout_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; 3] {
+    pub fn layout_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; 4] {
         let cs = wgpu::ShaderStages::COMPUTE;
-        [bind::storage(first, cs), bind::storage(first + 1, cs), bind::uniform(first + 2, cs)]
+        [
+            bind::storage(first, cs),
+            bind::storage(first + 1, cs),
+            bind::uniform(first + 2, cs),
+            bind::storage(first + 3, cs),
+        ]
     }
 
-    /// The lights' lookups, the maps' heights toward their lights, and the info.
-    pub fn resources(&self) -> [wgpu::BindingResource<'_>; 3] {
+    /// The lights' lookups, the maps' heights toward their lights, the info, and the highest
+    /// surface near each texel (shaders/lib/probe_maps_soft.wgsl).
+    pub fn resources(&self) -> [wgpu::BindingResource<'_>; 4] {
         let heights = match &self.drawn {
             Some((_, rsm)) => &rsm.heights,
             None => &self.unused,
         };
-        [self.lookups.as_entire_binding(), heights.as_entire_binding(), self.info.as_entire_binding()]
+        let near = self.near.as_ref().map_or(&self.unused, |n| &n.near);
+        [
+            self.lookups.as_entire_binding(),
+            heights.as_entire_binding(),
+            self.info.as_entire_binding(),
+            near.as_entire_binding(),
+        ]
     }
 }

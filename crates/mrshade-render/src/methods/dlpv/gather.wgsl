@@ -27,6 +27,7 @@
 @group(1) @binding(1) var<storage, read> probe_lookups: array<ProbeLookup>;
 @group(1) @binding(2) var<storage, read> probe_heights: array<f32>;
 @group(1) @binding(3) var<uniform> probe_info: vec4u;
+@group(1) @binding(4) var<storage, read> probe_heights_near: array<f32>;
 
 // Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 
@@ -91,7 +92,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         // `dlpv.sharp_probe_shadows_deg`; the volume's direct change holds the rest,
         // inject.wgsl). As shares of the probe's light: raw sums of a bright probe would
         // overflow the f16 targets.
-        let probe = probe_map_real_light(s.position, s.normal, params.scale.y);
+        let probe = probe_map_real_light(s.position, s.normal, params.scale.y, params.gathered.z == 1u);
         let total = probe.all_weight;
         let env_r = select(vec3f(1.0), probe.visible_r / total, total > vec3f(0.0));
         let taken = select(vec3f(0.0), probe.blocked / total, total > vec3f(0.0));

@@ -56,7 +56,8 @@ pub struct DlpvParams {
     /// Propagation steps per source.
     pub steps: UVec4,
     /// x: 1 when V_ρ is gathered from VPLs (the propagation writes the accumulated volumes
-    /// from the second on); y: 1 when the photo's light is in it (`dlpv.photo_bounce`).
+    /// from the second on); y: 1 when the photo's light is in it (`dlpv.photo_bounce`); z: 1
+    /// when the probe's shadows on real surfaces are soft (`dlpv.soft_probe_shadows`).
     pub gathered: UVec4,
 }
 
@@ -248,7 +249,12 @@ impl DlpvMethod {
                 steps[SOURCE_DIRECT] = settings.direct_steps;
                 UVec4::from_array(steps)
             },
-            gathered: UVec4::new(gathered as u32, (gathered && settings.photo_bounce) as u32, 0, 0),
+            gathered: UVec4::new(
+                gathered as u32,
+                (gathered && settings.photo_bounce) as u32,
+                settings.soft_probe_shadows as u32,
+                0,
+            ),
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/injected"),
@@ -418,8 +424,8 @@ impl DlpvMethod {
             gbuffer,
             &scene.materials.buffer,
         );
-        // 0: the three volumes; 1–3: the probe's lights' lookups, their maps' heights and counts
-        // (for the virtual pixels' visibility).
+        // 0: the three volumes; 1–4: the probe's lights' lookups, their maps' heights, counts
+        // and highest surfaces near each texel (the pixels' shadows of the probe).
         let mut entries = vec![bind::storage(0, cs)];
         entries.extend(ProbeMaps::layout_entries(1));
         let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
@@ -584,6 +590,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/rsm_texel.wgsl",
     "../../../shaders/lib/probe_light.wgsl",
     "../../../shaders/lib/probe_maps.wgsl",
+    "../../../shaders/lib/probe_maps_soft.wgsl",
     "volume.wgsl",
     "gather.wgsl",
 );
