@@ -71,21 +71,20 @@ pub struct DlpvSettings {
     /// How each VPL enters the volume: `cell` (default, the thesis's) or `trilinear`.
     pub splat: DlpvSplat,
     /// Angular radius (degrees) up to which a probe light casts the virtual content's shadow
-    /// on real surfaces through its maps, soft by the light's own radius (percentage-closer
-    /// soft shadows); from twice it on, through the volume's direct change (soft, 32³ cells,
-    /// and only inside the volume); in between, both by weight. 0 leaves every light to the
-    /// volume (the thesis's). Default 30: every light of the benchmark probes. Region FLIP on
-    /// lavapipe, 8.4° with hard maps (before) → 30° with soft ones: desk-bunny 0.1263 → 0.1049
-    /// (the volume blurred the bunny's contact shadow over its cells), desk-spot-real 0.1670 →
-    /// 0.1665, cornell 0.1745 → 0.1744, desk-spot-virtual 0.1042 → 0.1138 (paste 0.543),
-    /// desk-mirror 0.1659 → 0.1540, desk-glass 0.1661 → 0.1865 (the maps take the glass for
-    /// opaque). Hard maps at 30°: desk-bunny 0.1097, desk-spot-virtual 0.1208.
+    /// on real surfaces through its maps (`soft_probe_shadows`: hard or soft); from twice it
+    /// on, through the volume's direct change (soft, 32³ cells, and only inside the volume);
+    /// in between, both by weight. 0 leaves every light to the
+    /// volume (the thesis's). Default 30: every light of the benchmark probes; the volume
+    /// blurred the bunny's contact shadow over its cells and ends a shadow at its own edge.
+    /// Region FLIP (H100, 640×480), 8.4° → 30° (hard maps): desk-bunny 0.1265 → 0.1094
+    /// (paste 0.114), desk-spot-virtual 0.0996 → 0.1021 (paste 0.543), cornell 0.1745 →
+    /// 0.1746, desk-spot-real 0.1667 → 0.1669; moving 1080p frames 0.02–0.05 ms longer.
     pub sharp_probe_shadows_deg: f32,
     /// Those lights' shadows soft by each light's angular radius (percentage-closer soft
-    /// shadows over the maps, default true) or hard (one map texel per light, as before the
-    /// twenty-fifth session). Soft costs 0.2–0.5 ms more per moving 1080p frame on an H100
-    /// (docs/benchmarks.md); hard scores desk-bunny 0.1097 and desk-spot-virtual 0.1208 (soft
-    /// 0.1049 / 0.1138; lavapipe).
+    /// shadows over the maps) or, by default, hard (one map texel per light). Soft costs 0.17–
+    /// 0.47 ms more per moving 1080p frame on an H100 (the merge; desk-spot-real 1.50 → 1.96
+    /// ms, past the method's 1.5 ms), for region FLIP desk-bunny 0.1094 → 0.1045,
+    /// desk-spot-virtual 0.1021 → 0.0954, cornell and desk-spot-real alike (H100, 640×480).
     pub soft_probe_shadows: bool,
     /// Where V_ρ, the virtual objects' light from the real scene, comes from: `gathered`
     /// (default) or `propagated` (the thesis's).
@@ -118,7 +117,7 @@ impl Default for DlpvSettings {
             virtual_light: DlpvVirtualLight::Gathered,
             gather_block: 16,
             photo_bounce: true,
-            soft_probe_shadows: true,
+            soft_probe_shadows: false,
         }
     }
 }

@@ -184,7 +184,8 @@ pub struct ProbeMaps {
     unused: wgpu::Buffer,
     /// Side of the maps.
     resolution: u32,
-    /// Per texel, the highest surface of its map within `soft_search_texels` (probe_maps_near.wgsl).
+    /// Per texel, the highest surface of its map within `soft_search_texels`
+    /// (probe_maps_near.wgsl), for soft shadows only.
     near: Option<NearPass>,
 }
 
@@ -263,7 +264,8 @@ pub const NEAR_SHADER: &str = wgsl!("probe_maps_near.wgsl");
 
 impl ProbeMaps {
     /// The maps of side `resolution` around `cube` of `lights` (each with its angular radius,
-    /// `ibl::probe_lights_with_spread`; `label`: the GPU objects' prefix).
+    /// `ibl::probe_lights_with_spread`; `label`: the GPU objects' prefix), with the highest
+    /// surface near each texel when `soft_shadows` (shaders/lib/probe_maps_soft.wgsl).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         ctx: &GpuContext,
@@ -275,6 +277,7 @@ impl ProbeMaps {
         cube: (Vec3, Vec3),
         scene_box: Option<(Vec3, Vec3)>,
         shadows: &ShadowSettings,
+        soft_shadows: bool,
     ) -> Self {
         let device = &ctx.device;
         let spreads: Vec<f32> = lights.iter().map(|(_, spread)| *spread).collect();
@@ -308,7 +311,7 @@ impl ProbeMaps {
         let info = UVec4::new(pairs.len() as u32, resolution, soft_search_texels(resolution), 0);
         let info = init("probe_info", bytemuck::bytes_of(&info), wgpu::BufferUsages::UNIFORM);
         let unused = init("no_probe_lights", &[0; 256], wgpu::BufferUsages::STORAGE);
-        let near = drawn.as_ref().map(|(_, rsm, _, _)| NearPass::new(device, label, rsm));
+        let near = drawn.as_ref().filter(|_| soft_shadows).map(|(_, rsm, _, _)| NearPass::new(device, label, rsm));
         Self {
             near,
             drawn: drawn.map(|(set, rsm, _, _)| (set, rsm)),

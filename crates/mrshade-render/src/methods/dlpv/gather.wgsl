@@ -6,7 +6,8 @@
 // model of the photo the α-scaled composite divides by) and the signed change of V_Δ in
 // L_rv (Eq. 5.16), so that L_rv − L_r is the change. On real pixels the virtual content's
 // shadow of the probe's broad lights is in the direct change, that of the others (up to
-// `dlpv.sharp_probe_shadows_deg`) read from their maps here, soft by each light's radius; virtual ones see the probe
+// `dlpv.sharp_probe_shadows_deg`) read from their maps here, soft by each light's radius
+// with `dlpv.soft_probe_shadows`; virtual ones see the probe
 // through the maps of its directional lights (spec §2.3's suggested upgrade of ambient
 // occlusion to directional occlusion): the visibility sums Σw·V over the lights,
 // w = E_k·⟨n, l_k⟩₊ per channel, V = 0 where a real or virtual surface lies toward the light

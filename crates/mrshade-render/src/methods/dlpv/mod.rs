@@ -10,9 +10,9 @@
 //! method; the probe, which the thesis leaves to other techniques, is split into directional
 //! lights by median cut (`dlpv.probe_lights`) whose maps inject its bounce light and, as the
 //! direct change, the shadow of its broadest lights; the other lights' shadow on real surfaces
-//! is read from their maps in the merge (`dlpv.sharp_probe_shadows_deg`), soft by each light's
-//! angular radius (percentage-closer soft shadows): the volume blurs a contact shadow over its
-//! cells and ends it at its own edge.
+//! is read from their maps in the merge (`dlpv.sharp_probe_shadows_deg`; hard, or soft by each
+//! light's angular radius with `dlpv.soft_probe_shadows`): the volume blurs a contact shadow
+//! over its cells and ends it at its own edge.
 //! Texels seen alike by R_ρ and R_μ cancel exactly at injection. V_ρ, the virtual objects' light
 //! from the real scene, is by default not propagated but gathered (`dlpv.virtual_light`,
 //! rho.rs): the maps' texels summed into VPLs and the real surfaces the camera sees into VPLs
@@ -344,6 +344,7 @@ impl DlpvMethod {
             cube,
             scene_box,
             shadows,
+            settings.soft_probe_shadows,
         );
         if let Some((rsm, pairs_buffer, pairs)) = &scene_maps {
             let buffers = [&scene.lights, &rsm.texels, pairs_buffer];

@@ -78,6 +78,7 @@ impl PixelPasses {
             inner.cube(),
             scene_box,
             &session.settings.shadows,
+            false,
         );
         let mut entries = GpuProbe::layout_entries(cs).to_vec();
         entries.extend(ProbeMaps::layout_entries(4));
