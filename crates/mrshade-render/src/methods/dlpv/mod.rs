@@ -175,6 +175,14 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             rsm::bytes(2 * d.probe_lights as u64, d.probe_rsm_resolution),
         ),
         (
+            "dlpv probe maps' nearest highest surfaces (with dlpv.soft_probe_shadows: 2 × 4 bytes a texel)",
+            if d.soft_probe_shadows {
+                2 * 4 * 2 * d.probe_lights as u64 * (d.probe_rsm_resolution as u64).pow(2)
+            } else {
+                0
+            },
+        ),
+        (
             "dlpv volumes (dlpv.resolution³)",
             cells * (SOURCES as u64 * (CELL_BYTES + 2 * SCRATCH_CELL_BYTES) + 2 * VOLUMES * CELL_BYTES),
         ),
