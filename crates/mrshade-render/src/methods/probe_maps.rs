@@ -259,8 +259,8 @@ impl NearPass {
     }
 }
 
-/// The near-surface passes' module.
-pub const NEAR_SHADER: &str = wgsl!("probe_maps_near.wgsl");
+/// The near-surface passes' module (shaders/lib/lights.wgsl for `NO_RSM_HEIGHT`).
+pub const NEAR_SHADER: &str = wgsl!("../../shaders/lib/lights.wgsl", "probe_maps_near.wgsl");
 
 impl ProbeMaps {
     /// The maps of side `resolution` around `cube` of `lights` (each with its angular radius,

@@ -15,8 +15,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (any(id.xy >= vec2u(res)) || id.z >= size.y) { return; }
     let reach = i32(size.z);
     let along = select(vec2i(1, 0), vec2i(0, 1), size.w == 1u);
-    // NO_RSM_HEIGHT (shaders/lib/lights.wgsl) where nothing is near.
-    var highest = -3.0e38;
+    // What a texel that sees nothing holds, where nothing is near.
+    var highest = NO_RSM_HEIGHT;
     for (var k = -reach; k <= reach; k++) {
         let c = vec2i(id.xy) + k * along;
         if (any(c < vec2i(0)) || any(c >= vec2i(i32(res)))) { continue; }
