@@ -22,6 +22,7 @@
 
 mod lights;
 mod rho;
+mod shaders;
 
 use super::around::place;
 use super::probe_maps::{ProbeMaps, bounding_radius, layer_pairs};
@@ -35,10 +36,11 @@ use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use lights::{InjectSet, power_bound};
 use mrshade_core::settings::{DlpvSplat, DlpvVirtualLight, RenderSettings, ShadowSettings};
+use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
-use mrshade_gpu::{bind, wgsl};
 use rho::{MapSet, RhoGather, RhoPhoto};
+pub use shaders::*;
 use wgpu::util::DeviceExt;
 
 /// Mirrors `DlpvParams` in volume.wgsl.
@@ -569,37 +571,3 @@ impl LightTransport for DlpvMethod {
         self
     }
 }
-
-/// The injection module.
-pub const INJECT_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/lights.wgsl",
-    "../../../shaders/lib/sh.wgsl",
-    "../../../shaders/lib/rsm_texel.wgsl",
-    "../../../shaders/lib/probe_light.wgsl",
-    "volume.wgsl",
-    "inject.wgsl",
-);
-
-/// The seeding and propagation module (entry points `seed` and `propagate`).
-pub const PROPAGATE_SHADER: &str =
-    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/sh.wgsl", "volume.wgsl", "propagate.wgsl",);
-
-/// The per-pixel merge module.
-pub const GATHER_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/brdf.wgsl",
-    "../../../shaders/lib/gbuffer_pixel.wgsl",
-    "../../../shaders/lib/indirect_out.wgsl",
-    "../../../shaders/lib/dfg.wgsl",
-    "../../../shaders/lib/env.wgsl",
-    "../../../shaders/lib/lights.wgsl",
-    "../../../shaders/lib/sh.wgsl",
-    "../../../shaders/lib/rsm_texel.wgsl",
-    "../../../shaders/lib/probe_light.wgsl",
-    "../../../shaders/lib/probe_maps.wgsl",
-    "../../../shaders/lib/probe_maps_soft.wgsl",
-    "volume.wgsl",
-    "gather.wgsl",
-);
