@@ -176,7 +176,9 @@ fn the_sums_hold_every_step_when_every_second_dispatch_adds_them() {
 fn injected_red(splat: &str) -> Vec<(f64, usize, Vec3)> {
     let mut s = Setup::top_down(32);
     s.top_toml = "method = \"dlpv\"\n".into();
-    s.extra_toml += &format!("[dlpv]\nsplat = \"{splat}\"\nrsm_resolution = 128\nextent = 4.0\n");
+    // The bounce light propagated: gathered, neither V_μ nor the indirect change is injected.
+    s.extra_toml +=
+        &format!("[dlpv]\nsplat = \"{splat}\"\nrsm_resolution = 128\nextent = 4.0\nbounce_light = \"propagated\"\n");
     s.plane(0.3, 0.0, 0.6, true).cube([0.05, 0.1, 0.0], 0.1, false).light(
         json!({"type": "spot", "intensity": 3.0, "spot": {"innerConeAngle": 0.4, "outerConeAngle": 0.8}}),
         [0.3, 0.9, 0.1],
@@ -352,9 +354,13 @@ fn the_model_of_the_photo_holds_the_real_scenes_shadow_of_the_probe() {
     assert!((change - 1.0).abs() < 0.05, "the real shadow is taken as a change: {change:.3}");
 }
 
-/// V_ρ's red coefficients in cell `at` after one frame of `s` (a `dlpv` session), with the
-/// cell's side and centre.
-fn rho_cell(s: &Setup, at: [u32; 3]) -> (Vec4, f32, Vec3) {
+/// The accumulated volumes (merge order).
+const VOLUME_RHO: usize = 0;
+const VOLUME_DELTA: usize = 1;
+
+/// The red coefficients of accumulated volume `volume` (V_ρ, V_Δ, V_μ) in cell `at` after one
+/// frame of `s` (a `dlpv` session), with the cell's side and centre.
+fn volume_cell(s: &Setup, at: [u32; 3], volume: usize) -> (Vec4, f32, Vec3) {
     let (_dir, session) = s.session();
     let ctx = mrshade_testkit::gpu();
     let mut renderer = Renderer::new(&ctx, &session).unwrap();
@@ -366,7 +372,7 @@ fn rho_cell(s: &Setup, at: [u32; 3]) -> (Vec4, f32, Vec3) {
     let words = read_buffer(&ctx, &method.volumes).unwrap();
     let h = params.origin.w;
     let centre = params.origin.truncate() + (Vec3::new(at[0] as f32, at[1] as f32, at[2] as f32) + 0.5) * h;
-    (cast_slice::<u8, Vec4>(&words)[cell], h, centre)
+    (cast_slice::<u8, Vec4>(&words)[volume * 3 * (res * res * res) as usize + cell], h, centre)
 }
 
 /// The irradiance of the L1 SH a lit floor (radiance `radiance`, 60 cm, `hidden` the half side
@@ -417,10 +423,14 @@ fn the_gathered_virtual_light_is_the_sum_of_a_lit_floors_light() {
     // summed over the whole floor by the CPU (radiance 0.6 · 2 / π). The propagated V_ρ has
     // none of it: the floor lies 2 cm below the volume, where no VPL can be injected.
     let at = [8, 5, 8];
-    let (c, h, x) = rho_cell(&lit_floor(32, "photo_bounce = false\n"), at);
+    // The bounce light propagated: gathered, only the cells the pixels read are (the cube's
+    // underside is not seen).
+    let (c, h, x) =
+        volume_cell(&lit_floor(32, "photo_bounce = false\nbounce_light = \"propagated\"\n"), at, VOLUME_RHO);
     let gathered = down_facing(c, h);
     let expected = floor_light_at(x, 0.6 * 2.0 / std::f32::consts::PI, 0.02);
-    let (pc, ph, _) = rho_cell(&lit_floor(32, "virtual_light = \"propagated\"\n"), at);
+    let (pc, ph, _) =
+        volume_cell(&lit_floor(32, "virtual_light = \"propagated\"\nbounce_light = \"propagated\"\n"), at, VOLUME_RHO);
     let propagated = down_facing(pc, ph);
     eprintln!("cell at {x}: gathered {gathered:.4}, the CPU's sum {expected:.4}, propagated {propagated:.4}");
     assert!(rel(gathered, expected) < 0.05, "gathered {gathered} against {expected}");
@@ -434,7 +444,7 @@ fn the_floor_the_camera_sees_lights_the_virtual_object_with_the_photos_light() {
     // the cube takes the photo's light of the floor (13-pixel tiles of 512² pixels), the CPU's
     // sum of the same radiance over the floor the camera sees.
     let at = [10, 5, 8];
-    let (c, h, x) = rho_cell(&lit_floor(512, ""), at);
+    let (c, h, x) = volume_cell(&lit_floor(512, "bounce_light = \"propagated\"\n"), at, VOLUME_RHO);
     let gathered = down_facing(c, h);
     // sRGB 128 in linear.
     let grey = ((128.0f32 / 255.0 + 0.055) / 1.055).powf(2.4);
@@ -442,4 +452,81 @@ fn the_floor_the_camera_sees_lights_the_virtual_object_with_the_photos_light() {
     let expected = floor_light_at(x, grey, 0.02 / 0.88);
     eprintln!("cell at {x}: with the photo's light {gathered:.4}, the CPU's sum {expected:.4}");
     assert!(rel(gathered, expected) < 0.08, "{gathered} against {expected}");
+}
+
+/// The irradiance at `x` on a floor facing up (light arriving downward) of Lambertian patches
+/// (centre, unit normal, signed radiance, area), as the gather projects it: each patch's
+/// irradiance on a disk facing it, E = L·cos_v·A / d², in the L1 SH of its direction (the
+/// clamped cosine's reading, 1/4 + 1/2 of the cosine to −y).
+fn patches_light_at(x: Vec3, patches: &[(Vec3, Vec3, f32, f32)]) -> f32 {
+    let mut sum = 0.0f64;
+    for &(q, n, radiance, area) in patches {
+        let d = x - q;
+        let dist2 = d.length_squared();
+        let w = d / dist2.sqrt();
+        let cos_v = n.dot(w);
+        if cos_v > 0.0 {
+            sum += (radiance * cos_v * area / dist2 * (0.25 - 0.5 * w.y)) as f64;
+        }
+    }
+    sum as f32
+}
+
+/// Patches of 2 mm of the rectangle from `corner` along `u` and `v` (lengths are the edges').
+fn rectangle(corner: Vec3, u: Vec3, v: Vec3, normal: Vec3, radiance: f32) -> Vec<(Vec3, Vec3, f32, f32)> {
+    let (nu, nv) = ((u.length() / 0.002).round() as usize, (v.length() / 0.002).round() as usize);
+    let area = u.length() * v.length() / (nu * nv) as f32;
+    let mut out = Vec::with_capacity(nu * nv);
+    for i in 0..nu {
+        for k in 0..nv {
+            let at = corner + u * ((i as f32 + 0.5) / nu as f32) + v * ((k as f32 + 0.5) / nv as f32);
+            out.push((at, normal, radiance, area));
+        }
+    }
+    out
+}
+
+#[test]
+fn the_gathered_change_on_the_floor_is_the_lit_face_less_the_floor_it_hides() {
+    // A real floor (albedo 0.6) under a real sun 45° up toward −x (2 W/m², its light toward
+    // +x), a virtual 8 cm cube (albedo 0.7) on it, 16³ cells of 2 cm reaching below the floor.
+    // The change the floor 5 cm before the cube's lit face reads (`dlpv.bounce_light =
+    // "gathered"`, the default): the face's light, less the light of the floor the cube now
+    // hides from the sun (under it and in its shadow), summed by the CPU over 2 mm patches
+    // (gathered 0.155, the CPU 0.157). The propagated change (the thesis's) piles up beside
+    // its source: twice the answer here (0.313).
+    let setup = |settings: &str| {
+        let mut s = Setup::top_down(64);
+        s.top_toml = "method = \"dlpv\"\n".into();
+        s.extra_toml += &format!("[dlpv]\nresolution = 16\nextent = 4.0\nphoto_bounce = false\n{settings}");
+        s.plane(0.3, 0.0, 0.6, true).cube([0.0, 0.04, 0.0], 0.04, false);
+        let sun = s.gltf.light(json!({"type": "directional", "intensity": 2.0}));
+        let rotation = glam::Quat::from_rotation_z(std::f32::consts::FRAC_PI_4)
+            * glam::Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2);
+        s.gltf.node(json!({"name": "sun", "rotation": rotation.to_array(),
+            "extensions": {"KHR_lights_punctual": {"light": sun}}, "extras": {"real": true}}));
+        s
+    };
+    // The floor's cell at x = −9 cm, z = 1 cm (its centre 1 cm up).
+    let at = [3, 6, 8];
+    let (c, h, x) = volume_cell(&setup(""), at, VOLUME_DELTA);
+    let up_facing = |c: Vec4, h: f32| {
+        let (y0, y1) = (0.282_094_8, 0.488_602_5);
+        (std::f32::consts::PI * y0 * c.x - 2.0 * std::f32::consts::PI / 3.0 * y1 * c.y) / (h * h)
+    };
+    let gathered = up_facing(c, h);
+    let irradiance = 2.0 * std::f32::consts::FRAC_1_SQRT_2;
+    let (face, floor) = (0.7 * irradiance / std::f32::consts::PI, 0.6 * irradiance / std::f32::consts::PI);
+    let mut patches = rectangle(Vec3::new(-0.04, 0.0, -0.04), Vec3::Y * 0.08, Vec3::Z * 0.08, -Vec3::X, face);
+    // Hidden: under the cube and its shadow, out to 8 cm beyond its far face.
+    patches.extend(rectangle(Vec3::new(-0.04, 0.0, -0.04), Vec3::X * 0.16, Vec3::Z * 0.08, Vec3::Y, -floor));
+    let expected = patches_light_at(x, &patches);
+    let (pc, ph, _) = volume_cell(&setup("bounce_light = \"propagated\"\n"), at, VOLUME_DELTA);
+    let propagated = up_facing(pc, ph);
+    eprintln!(
+        "cell at {x}: the gathered change {gathered:.4}, the CPU's sum {expected:.4}, propagated {propagated:.4}"
+    );
+    assert!(expected > 0.02, "the known answer lights the cell: {expected}");
+    assert!(rel(gathered, expected) < 0.15, "gathered {gathered} against {expected}");
+    assert!(rel(propagated, expected) > 0.5, "propagated {propagated}");
 }

@@ -50,6 +50,9 @@ const MODULES: &[(&str, &str)] = &[
     ("dlpv/inject", dlpv::INJECT_SHADER),
     ("dlpv/propagate", dlpv::PROPAGATE_SHADER),
     ("dlpv/merge", dlpv::GATHER_SHADER),
+    ("dlpv/vpl_aggregate", dlpv::VPL_AGGREGATE_SHADER),
+    ("dlpv/mark_cells", dlpv::VPL_MARK_SHADER),
+    ("dlpv/vpl_gather", dlpv::VPL_GATHER_SHADER),
     ("probe_maps/near", mrshade_render::methods::probe_maps::NEAR_SHADER),
 ];
 
@@ -89,7 +92,14 @@ fn assert_layout(source: &str, name: &str, size: usize, offsets: &[(&str, usize)
 
 #[test]
 fn dlpv_params_match() {
-    for source in [dlpv::INJECT_SHADER, dlpv::PROPAGATE_SHADER, dlpv::GATHER_SHADER] {
+    for source in [
+        dlpv::INJECT_SHADER,
+        dlpv::PROPAGATE_SHADER,
+        dlpv::GATHER_SHADER,
+        dlpv::VPL_AGGREGATE_SHADER,
+        dlpv::VPL_MARK_SHADER,
+        dlpv::VPL_GATHER_SHADER,
+    ] {
         assert_layout(
             source,
             "DlpvParams",

@@ -21,16 +21,16 @@ pub enum DlpvSplat {
     Trilinear,
 }
 
-/// Where the virtual objects' light from the real scene (V_ρ) comes from.
+/// How a volume's bounce light reaches its cells (`dlpv.virtual_light`, `dlpv.bounce_light`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum DlpvVirtualLight {
+pub enum DlpvTransport {
     /// Summed over the lights' VPLs at every cell (the maps' texels gathered in blocks of
     /// `dlpv.gather_block`²): the inverse-square falloff at every distance; the default.
     #[default]
     #[serde(rename = "gathered")]
     Gathered,
-    /// Injected and propagated as the changes are (the thesis's): light walks about √steps
-    /// cells and pools near its source (docs/benchmarks.md, 2026-12-04).
+    /// Injected and propagated (the thesis's): light walks about √steps cells and pools near
+    /// its source (docs/benchmarks.md, 2026-12-04).
     #[serde(rename = "propagated")]
     Propagated,
 }
@@ -45,8 +45,8 @@ pub struct DlpvSettings {
     /// Side of the cubic volume as a multiple of the virtual content's largest bounding-box
     /// edge, centred on it. Default 2 ("twice the largest bounding box axis").
     pub extent: f32,
-    /// Propagation steps of the indirect change, of the real scene's bounce light, and of the
-    /// virtual objects' volume when it is propagated (1–256). Default 32.
+    /// Propagation steps of the volumes that are propagated (`virtual_light`, `bounce_light`;
+    /// 1–256). Default 32.
     pub propagation_steps: u32,
     /// Propagation steps of the direct change (0–256). Default 0: the thesis's code
     /// propagates it 5 steps (`render_direct(…, 5, …)`), but with nothing in the volume to
@@ -73,12 +73,14 @@ pub struct DlpvSettings {
     /// Angular radius (degrees) up to which a probe light casts the virtual content's shadow
     /// on real surfaces through its maps (`soft_probe_shadows`: hard or soft); from twice it
     /// on, through the volume's direct change (soft, 32³ cells, and only inside the volume);
-    /// in between, both by weight. 0 leaves every light to the
-    /// volume (the thesis's). Default 30: every light of the benchmark probes; the volume
-    /// blurred the bunny's contact shadow over its cells and ends a shadow at its own edge.
-    /// Region FLIP (H100, 640×480), 8.4° → 30° (hard maps): desk-bunny 0.1265 → 0.1094
-    /// (paste 0.114), desk-spot-virtual 0.0996 → 0.1021 (paste 0.543), cornell 0.1745 →
-    /// 0.1746, desk-spot-real 0.1667 → 0.1669; moving 1080p frames 0.02–0.05 ms longer.
+    /// in between, both by weight. 0 leaves every light to the volume (the thesis's). Default
+    /// 15: the volume blurred the bunny's contact shadow over its cells and ends a shadow at
+    /// its own edge, and hard shadows of lights broader than that draw a star of edges where
+    /// the answer's shadow is soft — the more since the model of the photo holds no
+    /// self-light (`bounce_light`). Region FLIP on lavapipe, 640×480, with 8.4 / 12 / 15 / 18 /
+    /// 30°: desk-bunny 0.1149 / 0.1112 / 0.1057 / 0.1044 / 0.1171 (paste 0.114),
+    /// desk-spot-virtual 0.1007 / 0.1095 / 0.1141 / 0.1164 / 0.1179, cornell 0.160–0.161 and
+    /// desk-spot-real 0.131–0.133 with all (docs/benchmarks.md, 2026-12-06).
     pub sharp_probe_shadows_deg: f32,
     /// Those lights' shadows soft by each light's angular radius (percentage-closer soft
     /// shadows over the maps) or, by default, hard (one map texel per light). Soft costs 0.17–
@@ -88,7 +90,17 @@ pub struct DlpvSettings {
     pub soft_probe_shadows: bool,
     /// Where V_ρ, the virtual objects' light from the real scene, comes from: `gathered`
     /// (default) or `propagated` (the thesis's).
-    pub virtual_light: DlpvVirtualLight,
+    pub virtual_light: DlpvTransport,
+    /// Where the real surfaces' bounce light comes from: V_μ, the real scene's own (the model
+    /// of the photo), and the indirect change of V_Δ (the virtual surfaces' bounce light, less
+    /// that of the real surfaces they hide from a light): `gathered` (default; the signed
+    /// VPLs of the change summed at every cell, V_μ's VPLs with the photo's light as V_ρ's)
+    /// or `propagated` (the thesis's). Propagated, a floor lights itself through its own
+    /// cells (spec §2.12.9): in cornell's shadows V_μ held twice the photo's bounce light,
+    /// grey where the answer's is the red wall's, and V_Δ took that self-light away with the
+    /// floor a block hides; and the light of the blocks' lit tops never reached the back wall
+    /// (docs/benchmarks.md, 2026-12-06).
+    pub bounce_light: DlpvTransport,
     /// Texels per side of the blocks of a map summed into one VPL of the gathered V_ρ (a
     /// power of two, 8–256; at most a map's side). Default 16: 1024 VPLs per 512² map, 16 per
     /// probe light's 64². With the photo's light the maps light only what the camera does not
@@ -96,8 +108,8 @@ pub struct DlpvSettings {
     /// 16, cornell 0.1743 / 0.1744) at 0.07 ms more on an H100 (desk-spot-virtual, 1080p);
     /// without it 8 scored best (cornell 0.2141 / 0.1904 / 0.1861 with 32 / 16 / 8).
     pub gather_block: u32,
-    /// With `virtual_light = "gathered"`: the real surfaces the camera sees light the virtual
-    /// objects with the radiance the photo shows of them (every bounce of the real scene),
+    /// In the gathered volumes (V_ρ, V_μ): the real surfaces the camera sees light the other
+    /// surfaces with the radiance the photo shows of them (every bounce of the real scene),
     /// the maps' VPLs the surfaces it does not see. Default true.
     pub photo_bounce: bool,
 }
@@ -113,8 +125,9 @@ impl Default for DlpvSettings {
             probe_rsm_resolution: 64,
             probe_lights: 32,
             splat: DlpvSplat::Cell,
-            sharp_probe_shadows_deg: 30.0,
-            virtual_light: DlpvVirtualLight::Gathered,
+            sharp_probe_shadows_deg: 15.0,
+            virtual_light: DlpvTransport::Gathered,
+            bounce_light: DlpvTransport::Gathered,
             gather_block: 16,
             photo_bounce: true,
             soft_probe_shadows: false,

@@ -18,7 +18,7 @@ mod specular;
 pub use caustics::{CausticsSettings, Concentration, MAX_SPLAT_RATIO};
 pub use composite::{CompositeMode, CompositeSettings};
 pub use dir::{BounceMethod, DirSettings, Distribution, MAX_ISM_POINTS, TemporalSettings};
-pub use dlpv::{DlpvSettings, DlpvSplat, DlpvVirtualLight};
+pub use dlpv::{DlpvSettings, DlpvSplat, DlpvTransport};
 pub use dvct::DvctSettings;
 pub use ibl::{IblSettings, PrtSpecular, VirtualShading};
 pub use limits::{DEFAULT_IMAGE_PIXELS, Limits};

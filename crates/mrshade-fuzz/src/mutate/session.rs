@@ -56,6 +56,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.splat", Kind::Choice(&["cell", "trilinear", "nearest"])),
     ("dlpv.sharp_probe_shadows_deg", Kind::Number),
     ("dlpv.virtual_light", Kind::Choice(&["gathered", "propagated", "volume"])),
+    ("dlpv.bounce_light", Kind::Choice(&["gathered", "propagated", "volume"])),
     ("dlpv.gather_block", Kind::Number),
     ("dlpv.photo_bounce", Kind::Bool),
     ("dlpv.soft_probe_shadows", Kind::Bool),

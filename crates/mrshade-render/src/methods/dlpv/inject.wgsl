@@ -10,6 +10,8 @@
 //   photo by a model that has it, as with the other methods);
 // - indirect change: +R_ρ's VPL − R_μ's VPL, only where they differ (where a virtual surface is
 //   nearer); texels seen by both cancel exactly instead of by subtractive blending;
+//   V_μ and the indirect change only when propagated (`dlpv.bounce_light`; by default they
+//   are gathered from VPLs, vpl.wgsl);
 // - direct change (lights split from the probe only; punctual shadows come from the shadow
 //   maps): −Φ of the light on the real surface that the virtual one now hides, lobe along the
 //   light's direction, half a cell toward the light, weighted by how broad the light is
@@ -96,26 +98,26 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         // A virtual light exists in the real+virtual solution only: R_μ is empty, and all
         // of R_ρ's bounce light is change.
         if (virtual_nearer) {
-            splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
+            if (bounce_propagated()) { splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt)); }
         } else if (real_hit) {
             let r = vpl(real);
             if (rho_propagated()) { splat(SOURCE_RHO, vpl_position(real), r); }
-            splat(SOURCE_INDIRECT, vpl_position(real), r);
+            if (bounce_propagated()) { splat(SOURCE_INDIRECT, vpl_position(real), r); }
         }
         return;
     }
     // V_ρ's real VPLs are V_μ's but for those a virtual surface hides: V_ρ's slot holds only
     // that difference, and the seed adds V_μ to it (half the atomics of injecting every
     // texel twice; the same sum).
-    if (real_hit) {
+    if (real_hit && bounce_propagated()) {
         splat(SOURCE_MU, vpl_position(real), vpl(real));
     }
     if (!virtual_nearer) { return; }
-    splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt));
+    if (bounce_propagated()) { splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt)); }
     if (!real_hit) { return; }
     let r = vpl(real);
     let hidden = array<vec4f, 3>(-r[0], -r[1], -r[2]);
-    splat(SOURCE_INDIRECT, vpl_position(real), hidden);
+    if (bounce_propagated()) { splat(SOURCE_INDIRECT, vpl_position(real), hidden); }
     if (rho_propagated()) { splat(SOURCE_RHO, vpl_position(real), hidden); }
     if (rsm_size.z == 1u) {
         // Lobe along the light (a direction, as SH of a delta), scaled so that the query on

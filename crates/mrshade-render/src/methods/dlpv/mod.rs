@@ -15,14 +15,19 @@
 //! over its cells and ends it at its own edge.
 //! Texels seen alike by R_ρ and R_μ cancel exactly at injection. V_ρ, the virtual objects' light
 //! from the real scene, is by default not propagated but gathered (`dlpv.virtual_light`,
-//! rho.rs): the maps' texels summed into VPLs and the real surfaces the camera sees into VPLs
-//! of the photo's light (`dlpv.photo_bounce`), each cell of the virtual content's box the sum
-//! of their light — the propagation's light walks about √steps cells and pools near its source,
-//! and sources outside the volume never enter it.
+//! vpl_gather.rs): the maps' texels summed into VPLs and the real surfaces the camera sees into
+//! VPLs of the photo's light (`dlpv.photo_bounce`), each cell of the virtual content's box the
+//! sum of their light — the propagation's light walks about √steps cells and pools near its
+//! source, and sources outside the volume never enter it. So, by default, are the real
+//! surfaces' bounce light V_μ and the indirect change of V_Δ (`dlpv.bounce_light`): the same
+//! VPLs, signed for the change (+ a virtual surface's light, − that of the real surface it
+//! hides), summed at every cell a pixel reads; propagated, a floor lit itself through its own
+//! cells and a block's lit top never reached the wall behind it. Only the probe's broad lights'
+//! direct change is then injected (and not propagated, `dlpv.direct_steps`).
 
 mod lights;
-mod rho;
 mod shaders;
+mod vpl_gather;
 
 use super::around::place;
 use super::probe_maps::{ProbeMaps, bounding_radius, layer_pairs};
@@ -35,12 +40,12 @@ use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use lights::{InjectSet, power_bound};
-use mrshade_core::settings::{DlpvSplat, DlpvVirtualLight, RenderSettings, ShadowSettings};
+use mrshade_core::settings::{DlpvSettings, DlpvSplat, DlpvTransport, RenderSettings, ShadowSettings};
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
-use rho::{MapSet, RhoGather, RhoPhoto};
 pub use shaders::*;
+use vpl_gather::{MapSet, VplGather, VplPhoto};
 use wgpu::util::DeviceExt;
 
 /// Mirrors `DlpvParams` in volume.wgsl.
@@ -109,7 +114,7 @@ pub struct DlpvMethod {
     /// coefficients per cell each).
     pub volumes: wgpu::Buffer,
     /// V_ρ summed over VPLs (`dlpv.virtual_light = "gathered"`).
-    rho: Option<RhoGather>,
+    vpl_gather: Option<VplGather>,
     /// The per-pixel pass, over the internal size.
     gather: Dispatch,
     /// What direct lighting adds.
@@ -140,6 +145,12 @@ pub fn propagate_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             bind::storage_rw(5, cs),
         ],
     )
+}
+
+/// The volumes `settings` gathers from VPLs (vpl_gather.rs `GATHERED_*` bits; 0: none).
+fn gathered_volumes(settings: &DlpvSettings) -> u32 {
+    let bit = |transport, bit| if transport == DlpvTransport::Gathered { bit } else { 0 };
+    bit(settings.virtual_light, vpl_gather::GATHERED_RHO) | bit(settings.bounce_light, vpl_gather::GATHERED_BOUNCE)
 }
 
 /// Per dispatch of seeding (0) and propagation (1 …= `max_steps`), how many dispatches
@@ -189,17 +200,18 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             cells * (SOURCES as u64 * (CELL_BYTES + 2 * SCRATCH_CELL_BYTES) + 2 * VOLUMES * CELL_BYTES),
         ),
         (
-            "dlpv gathered V_ρ (VPLs of the maps and the photo, partial sums)",
-            match d.virtual_light {
-                DlpvVirtualLight::Gathered => rho::bytes(
+            "dlpv gathered volumes (VPLs of the maps and the photo, partial sums)",
+            match gathered_volumes(d) {
+                0 => 0,
+                gathered => vpl_gather::bytes(
                     &[
                         (layers, (d.rsm_resolution as u64).pow(2)),
                         (d.probe_lights as u64, (d.probe_rsm_resolution as u64).pow(2)),
                     ],
                     d.gather_block as u64,
                     cells,
+                    gathered,
                 ),
-                DlpvVirtualLight::Propagated => 0,
             },
         ),
     ]
@@ -238,7 +250,9 @@ impl DlpvMethod {
         };
         let shadows = &session.settings.shadows;
         let scene_radius = bounding_radius(scene_box);
-        let gathered = settings.virtual_light == DlpvVirtualLight::Gathered;
+        let gathered = gathered_volumes(settings);
+        let rho_gathered = gathered & vpl_gather::GATHERED_RHO != 0;
+        let bounce_gathered = gathered & vpl_gather::GATHERED_BOUNCE != 0;
         let probe_only: Vec<_> = probe_lights.iter().map(|(light, _)| light.clone()).collect();
         let bound =
             power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_only, bounding_radius(Some(cube)));
@@ -252,18 +266,20 @@ impl DlpvMethod {
                 0.0,
             ),
             steps: {
+                // A gathered volume's sources are neither injected nor propagated.
+                let propagated = |gathered: bool| if gathered { 0 } else { settings.propagation_steps };
                 let mut steps = [0; SOURCES as usize];
-                steps[SOURCE_RHO] = settings.propagation_steps;
-                steps[SOURCE_MU] = settings.propagation_steps;
-                steps[SOURCE_INDIRECT] = settings.propagation_steps;
+                steps[SOURCE_RHO] = propagated(rho_gathered);
+                steps[SOURCE_MU] = propagated(bounce_gathered);
+                steps[SOURCE_INDIRECT] = propagated(bounce_gathered);
                 steps[SOURCE_DIRECT] = settings.direct_steps;
                 UVec4::from_array(steps)
             },
             gathered: UVec4::new(
-                gathered as u32,
-                (gathered && settings.photo_bounce) as u32,
+                rho_gathered as u32,
+                (gathered != 0 && settings.photo_bounce) as u32,
                 settings.soft_probe_shadows as u32,
-                0,
+                bounce_gathered as u32,
             ),
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
@@ -410,12 +426,14 @@ impl DlpvMethod {
             })
             .collect();
         let volumes = sums[updates[max_steps as usize + 1] % 2].clone();
-        let rho = gathered.then(|| {
-            let photo = RhoPhoto { frame_uniforms, gbuffer, photo: inputs.photo, internal_size };
-            RhoGather::new(
+        let vpl_gather = (gathered != 0).then(|| {
+            let photo = VplPhoto { frame_uniforms, gbuffer, photo: inputs.photo, internal_size };
+            VplGather::new(
                 device,
                 &step_params[0],
                 &volumes,
+                &injected,
+                gathered,
                 &map_sets,
                 photo,
                 settings.gather_block,
@@ -474,7 +492,7 @@ impl DlpvMethod {
             dispatches,
             first_sums,
             volumes,
-            rho,
+            vpl_gather,
             gather: Dispatch {
                 pipeline: gather,
                 groups: gather_groups,
@@ -501,8 +519,8 @@ impl DlpvMethod {
         }
         let cube = (origin, origin + Vec3::splat(side));
         self.probe.follow(queue, cube, self.scene_box, &self.shadows);
-        if let Some(rho) = &mut self.rho {
-            rho.follow(queue, geometry.virtual_box(), &self.params);
+        if let Some(gather) = &mut self.vpl_gather {
+            gather.follow(queue, geometry.virtual_box(), &self.params);
         }
     }
 }
@@ -520,15 +538,17 @@ impl LightTransport for DlpvMethod {
             }
             self.stale = true;
         }
-        // The photo's light in V_ρ follows the camera and the photo.
-        self.stale_photo |= (change.camera_moved || change.photo_changed) && self.params.gathered.y == 1;
+        // The photo's light in the gathered volumes follows the camera and the photo, and the
+        // cells the pixels read (the gathered bounce light) the camera.
+        self.stale_photo |= (change.camera_moved || change.photo_changed)
+            && (self.params.gathered.y == 1 || self.params.gathered.w == 1);
     }
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         let stale_photo = std::mem::take(&mut self.stale_photo);
         // A new photo or camera alone: the maps are as they were, V_ρ is gathered again.
-        if let (false, true, Some(rho)) = (self.stale, stale_photo, &self.rho) {
-            rho.record(rec);
+        if let (false, true, Some(gather)) = (self.stale, stale_photo, &self.vpl_gather) {
+            gather.record(rec);
         }
         if std::mem::take(&mut self.stale) {
             if let Some(rsm) = &self.scene_maps {
@@ -555,9 +575,12 @@ impl LightTransport for DlpvMethod {
                     pass.dispatch_workgroups(res / 4, res / 4, res / 4 * 3 * volumes);
                 }
             });
-            if let Some(rho) = &self.rho {
-                rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
-                rho.record(rec);
+            if let Some(gather) = &self.vpl_gather {
+                if self.params.gathered.x == 1 {
+                    // V_ρ's cells beyond those gathered are never read: zero.
+                    rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
+                }
+                gather.record(rec);
             }
         }
         rec.compute(Self::LABEL, |pass| self.gather.record(pass));

@@ -36,3 +36,28 @@ pub const GATHER_SHADER: &str = wgsl!(
     "volume.wgsl",
     "gather.wgsl",
 );
+
+/// The VPLs of the gathered volumes (entry points `aggregate` and `photo_tiles`).
+pub const VPL_AGGREGATE_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "../../../shaders/lib/lights.wgsl",
+    "../../../shaders/lib/rsm_texel.wgsl",
+    "volume.wgsl",
+    "vpl.wgsl",
+    "vpl_aggregate.wgsl",
+    "vpl_photo.wgsl",
+);
+
+/// The blocks of cells the pixels read (with the bounce light gathered).
+pub const VPL_MARK_SHADER: &str =
+    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/gbuffer.wgsl", "volume.wgsl", "mark_cells.wgsl",);
+
+/// The gather of the VPLs' light into the cells (entry points `gather` and `gather_sum`).
+pub const VPL_GATHER_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/sh.wgsl",
+    "volume.wgsl",
+    "vpl.wgsl",
+    "vpl_gather.wgsl"
+);

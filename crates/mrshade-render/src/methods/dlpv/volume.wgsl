@@ -13,13 +13,16 @@ struct DlpvParams {
     scale: vec4f,
     // propagation steps per source (SOURCE_*)
     steps: vec4u,
-    // x: 1 when V_ρ is gathered from VPLs (rho_vpl.wgsl): its source is neither injected nor
+    // x: 1 when V_ρ is gathered from VPLs (vpl.wgsl): its source is neither injected nor
     // propagated, and the propagation writes the accumulated volumes from the second on;
-    // y: 1 when the photo's light is in it (rho_photo.wgsl)
+    // y: 1 when the photo's light is in the gathered volumes (vpl_photo.wgsl); z: 1 when the
+    // probe's shadows on real surfaces are soft; w: 1 when V_μ and V_Δ's indirect change are
+    // gathered (`dlpv.bounce_light`): their sources are neither injected nor propagated
     gathered: vec4u,
 }
 
 fn rho_propagated() -> bool { return params.gathered.x == 0u; }
+fn bounce_propagated() -> bool { return params.gathered.w == 0u; }
 
 // `info.w`: a VPL goes into the cell it lies in, or trilinearly into the eight around it.
 const SPLAT_CELL: u32 = 0u;

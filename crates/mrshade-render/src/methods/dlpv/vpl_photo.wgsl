@@ -62,5 +62,6 @@ fn photo_tiles(@builtin(workgroup_id) tile: vec3u, @builtin(local_invocation_id)
             sum = plus(sum, pixel_sum(vec2i(tile.xy * side + vec2u(x, y))));
         }
     }
-    append_workgroup_sum(thread, sum);
+    append_workgroup_sum(thread, sum, VPL_RHO | VPL_MU);
 }
+

@@ -1,18 +1,20 @@
-//! V_ρ gathered from VPLs (`dlpv.virtual_light = "gathered"`, rho_vpl.wgsl): the lights'
-//! maps summed block by block into VPLs (rho_aggregate.wgsl), with `dlpv.photo_bounce` the
-//! camera's real pixels tile by tile into VPLs of the photo's light (rho_photo.wgsl), and
-//! every cell of V_ρ around the virtual content the sum of their light at its centre
-//! (rho_gather.wgsl), in place of V_ρ's propagation.
+//! The volumes gathered from VPLs (vpl.wgsl): V_ρ (`dlpv.virtual_light = "gathered"`)
+//! and V_μ with V_Δ's indirect change (`dlpv.bounce_light = "gathered"`). The lights' maps
+//! summed block by block into VPLs by what they light (vpl_aggregate.wgsl), with
+//! `dlpv.photo_bounce` the camera's real pixels tile by tile into VPLs of the photo's light
+//! (vpl_photo.wgsl), and every cell read the sum of their light at its centre
+//! (vpl_gather.wgsl), in place of the propagation.
 
 use super::DlpvParams;
+use super::shaders::{VPL_AGGREGATE_SHADER, VPL_GATHER_SHADER, VPL_MARK_SHADER};
 use bytemuck::{Pod, Zeroable};
 use glam::{IVec3, UVec3, UVec4, Vec3, Vec4};
+use mrshade_gpu::bind;
 use mrshade_gpu::shader::compute_pipeline_entry;
 use mrshade_gpu::timing::Recorder;
-use mrshade_gpu::{bind, wgsl};
 use wgpu::util::DeviceExt;
 
-/// Mirrors `GatherVpl` in rho_vpl.wgsl.
+/// Mirrors `GatherVpl` in vpl.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct GatherVpl {
@@ -21,23 +23,36 @@ struct GatherVpl {
     flux: Vec4,
 }
 
-/// Mirrors `RhoGatherInfo` in rho_vpl.wgsl.
+/// Mirrors `GatherInfo` in vpl.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct GatherInfo {
     /// x: chunks of the VPLs; yzw: the first cell gathered.
     chunks_first: UVec4,
-    /// xyz: cells gathered along each axis.
+    /// xyz: cells gathered along each axis; w: the volumes gathered (`GATHERED_*`).
     size: UVec4,
 }
 
-/// The cells V_ρ is read from: those of the virtual content's box and one cell around it (the
-/// merge reads half a cell off a surface, trilinearly: at most the next cell out), within the
-/// volume; all of it without virtual content. Other cells are never read (virtual pixels only)
-/// and left at zero.
-fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3, UVec3) {
+/// The volumes gathered (vpl.wgsl `GATHERED_*`): V_ρ; V_μ and V_Δ's indirect change.
+pub(super) const GATHERED_RHO: u32 = 1;
+pub(super) const GATHERED_BOUNCE: u32 = 2;
+
+/// Volumes whose partial sums the gather keeps (vpl_gather.wgsl `volumes_gathered`).
+fn volumes_summed(gathered: u32) -> u64 {
+    if gathered & GATHERED_BOUNCE != 0 { 3 } else { 1 }
+}
+
+/// The cells gathered: with the bounce light (real pixels read any) every one; for V_ρ alone
+/// those of the virtual content's box and one cell around it (the merge reads half a cell off
+/// a surface, trilinearly: at most the next cell out), within the volume, all of it without
+/// virtual content. Other cells are never read (virtual pixels only) and left at zero.
+fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams, gathered: u32) -> (UVec3, UVec3) {
     let res = params.info.x;
-    let Some((lo, hi)) = virtual_box else { return (UVec3::ZERO, UVec3::splat(res)) };
+    let all = (UVec3::ZERO, UVec3::splat(res));
+    if gathered & GATHERED_BOUNCE != 0 {
+        return all;
+    }
+    let Some((lo, hi)) = virtual_box else { return all };
     let origin = params.origin.truncate();
     let h = params.origin.w;
     let cell = |p: Vec3| ((p - origin) / h).floor().as_ivec3();
@@ -46,15 +61,15 @@ fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3,
     (first, last + 1 - first)
 }
 
-/// What the photo's light in V_ρ reads (rho_photo.wgsl): the frame, its G-buffer and photo.
-pub(super) struct RhoPhoto<'a> {
+/// What the photo's light in V_ρ reads (vpl_photo.wgsl): the frame, its G-buffer and photo.
+pub(super) struct VplPhoto<'a> {
     pub frame_uniforms: &'a wgpu::Buffer,
     pub gbuffer: &'a crate::passes::gbuffer::GBuffer,
     pub photo: &'a mrshade_gpu::Target,
     pub internal_size: (u32, u32),
 }
 
-/// Pixels per side of the photo's tiles (rho_photo.wgsl) at `internal_size`: 40 rows of tiles
+/// Pixels per side of the photo's tiles (vpl_photo.wgsl) at `internal_size`: 40 rows of tiles
 /// whatever the size (2 to 64 pixels), so that a tile's footprint, not its pixel count, stays
 /// alike — 16-pixel tiles are a seventh of a 160 × 120 image and 8 160 VPLs at 1080p. Region
 /// FLIP on lavapipe at 640×480 with 60 / 40 / 30 rows: desk-spot-real 0.1619 / 0.1641 / 0.1693,
@@ -66,18 +81,27 @@ fn photo_tile(internal_size: (u32, u32)) -> u32 {
 /// Rows of the photo's tiles.
 const PHOTO_TILE_ROWS: u32 = 40;
 
-/// GPU bytes of the gathered V_ρ: its VPLs (`pairs_texels`: the maps' pairs × texels per map,
-/// per set; the photo's tiles for images up to 4:1) and the gather's partial sums.
-pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64) -> u64 {
+/// GPU bytes of the gathered volumes (`gathered`: `GATHERED_*` bits): their VPLs
+/// (`pairs_texels`: the maps' pairs × texels per map, per set, up to four VPLs per block;
+/// the photo's tiles for images up to 4:1) and the gather's partial sums.
+pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64, gathered: u32) -> u64 {
     let vpl = std::mem::size_of::<GatherVpl>() as u64;
     let map_vpls: u64 = pairs_texels.iter().map(|&(pairs, texels)| pairs * (texels / (block * block)).max(1)).sum();
+    let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK } else { 1 };
     let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
-    (map_vpls + photo_vpls) * vpl + chunks(cells) as u64 * cells * PARTIAL_CELL_BYTES
+    let partial = volumes_summed(gathered) * PARTIAL_CELL_BYTES;
+    (map_vpls * per_block + photo_vpls) * vpl + chunks(cells, partial) as u64 * cells * partial
 }
 
-/// Chunks the VPLs are gathered in: as many as `PARTIAL_BYTES` of partial sums hold, 1 to 16.
-fn chunks(cells: u64) -> u32 {
-    (PARTIAL_BYTES / (cells * PARTIAL_CELL_BYTES)).clamp(1, 16) as u32
+/// VPLs a block of a map appends at most with the bounce light gathered (vpl_aggregate.wgsl):
+/// its lit real texels, its hidden ones the camera does not see and those it sees, and the
+/// virtual texels that hide them.
+const VPLS_PER_BLOCK: u64 = 4;
+
+/// Chunks the VPLs are gathered in: as many as `PARTIAL_BYTES` of partial sums hold (`partial`
+/// bytes per cell), 1 to 16.
+fn chunks(cells: u64, partial: u64) -> u32 {
+    (PARTIAL_BYTES / (cells * partial)).clamp(1, 16) as u32
 }
 
 /// One set of maps to sum into VPLs: its group and its workgroups (blocks along x and y,
@@ -96,9 +120,16 @@ pub(super) struct MapSet<'a> {
 }
 
 /// The two passes and the VPLs between them.
-pub(super) struct RhoGather {
+pub(super) struct VplGather {
     aggregate: wgpu::ComputePipeline,
     photo_tiles: wgpu::ComputePipeline,
+    /// Flags the blocks of cells the pixels read (with the bounce light gathered), and its
+    /// group 0.
+    mark_cells: Option<(wgpu::ComputePipeline, wgpu::BindGroup)>,
+    /// Per block of 4³ cells, 1 where a pixel reads one (mark_cells.wgsl).
+    blocks_read: wgpu::Buffer,
+    /// The internal size (`mark_cells` runs once per pixel).
+    pixels: (u32, u32),
     camera_group: wgpu::BindGroup,
     sets: Vec<AggregateSet>,
     gather: wgpu::ComputePipeline,
@@ -107,35 +138,40 @@ pub(super) struct RhoGather {
     info: wgpu::Buffer,
     /// The VPLs appended (cleared before the pass).
     count: wgpu::Buffer,
-    /// Chunks the VPLs are gathered in (`rho_gather.wgsl`).
+    /// Chunks the VPLs are gathered in (`vpl_gather.wgsl`).
     chunks: u32,
     /// The cells gathered (`cells_read`): their size.
     size: UVec3,
+    /// The volumes gathered (`GATHERED_*`).
+    gathered: u32,
 }
 
 /// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
 const PARTIAL_BYTES: u64 = 32 << 20;
 
-/// Bytes of one cell's partial sum over one chunk (rho_gather.wgsl `partials`: a vec4f of SH
-/// coefficients per channel).
+/// Bytes of one cell's partial sum of one volume over one chunk (vpl_gather.wgsl `partials`: a
+/// vec4f of SH coefficients per channel).
 const PARTIAL_CELL_BYTES: u64 = 3 * 16;
 
-impl RhoGather {
+impl VplGather {
     /// GPU timing label of the maps' and the photo's VPLs.
-    pub const VPLS_LABEL: &'static str = "dlpv-rho-vpls";
+    pub const VPLS_LABEL: &'static str = "dlpv-vpls";
     /// GPU timing label of the gather into V_ρ's cells.
-    pub const LABEL: &'static str = "dlpv-rho-gather";
+    pub const LABEL: &'static str = "dlpv-vpl-gather";
 
     /// `params`: the volumes' uniform; `volumes`: the accumulated volumes, V_ρ first;
-    /// `block`: texels per VPL side (at most the maps' side); `virtual_box` and `values`:
-    /// where the cells read lie.
+    /// `injected`: the injection (V_Δ's direct change); `gathered`: the volumes gathered
+    /// (`GATHERED_*`); `block`: texels per VPL side (at most the maps' side); `virtual_box`
+    /// and `values`: where the cells read lie.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         device: &wgpu::Device,
         params: &wgpu::Buffer,
         volumes: &wgpu::Buffer,
+        injected: &wgpu::Buffer,
+        gathered: u32,
         sets: &[MapSet],
-        photo: RhoPhoto,
+        photo: VplPhoto,
         block: u32,
         virtual_box: Option<(Vec3, Vec3)>,
         values: &DlpvParams,
@@ -146,34 +182,42 @@ impl RhoGather {
             sets.iter().zip(&sides).map(|(s, side)| s.pairs * (s.resolution / side).pow(2)).collect();
         let tile = photo_tile(photo.internal_size);
         let tiles = [photo.internal_size.0.div_ceil(tile), photo.internal_size.1.div_ceil(tile)];
-        let map_vpls: u32 = counts.iter().sum();
+        let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK as u32 } else { 1 };
+        let map_vpls: u32 = counts.iter().sum::<u32>() * per_block;
         let total = map_vpls + tiles[0] * tiles[1];
         let cells = (values.info.x as u64).pow(3);
-        let chunks = chunks(cells);
-        let (first, size) = cells_read(virtual_box, values);
+        let partial = volumes_summed(gathered) * PARTIAL_CELL_BYTES;
+        let chunks = chunks(cells, partial);
+        let (first, size) = cells_read(virtual_box, values, gathered);
         let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("dlpv/rho_gather_info"),
+            label: Some("dlpv/vpl_gather_info"),
             contents: bytemuck::bytes_of(&GatherInfo {
                 chunks_first: UVec4::from((chunks, first)),
-                size: size.extend(0),
+                size: size.extend(gathered),
             }),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let count = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("dlpv/rho_vpl_count"),
+            label: Some("dlpv/vpl_vpl_count"),
             size: 16,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let blocks_read = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/blocks_read"),
+            size: (cells / 64).max(1) * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let vpls = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("dlpv/rho_vpls"),
+            label: Some("dlpv/vpl_vpls"),
             size: (total.max(1) as usize * std::mem::size_of::<GatherVpl>()) as u64,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
         let aggregate_layout = bind::layout(
             device,
-            "dlpv/rho_aggregate_layout",
+            "dlpv/vpl_aggregate_layout",
             &[
                 bind::uniform(0, cs),
                 bind::storage(1, cs),
@@ -185,12 +229,12 @@ impl RhoGather {
                 bind::uniform(7, cs),
             ],
         );
-        // The frame, the G-buffer's depth, normals and flags, the photo (rho_photo.wgsl).
+        // The frame, the G-buffer's depth, normals and flags, the photo (vpl_photo.wgsl).
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let d2 = wgpu::TextureViewDimension::D2;
         let camera_layout = bind::layout(
             device,
-            "dlpv/rho_camera_layout",
+            "dlpv/vpl_camera_layout",
             &[
                 bind::uniform(0, cs),
                 bind::texture(1, cs, unfilterable, d2),
@@ -202,7 +246,7 @@ impl RhoGather {
         use wgpu::BindingResource::TextureView;
         let camera_group = bind::group(
             device,
-            "dlpv/rho_camera_group",
+            "dlpv/vpl_camera_group",
             &camera_layout,
             &[
                 photo.frame_uniforms.as_entire_binding(),
@@ -213,9 +257,28 @@ impl RhoGather {
             ],
         );
         let layouts = [&aggregate_layout, &camera_layout];
-        let aggregate = compute_pipeline_entry(device, "dlpv/rho_aggregate", AGGREGATE_SHADER, "aggregate", &layouts);
+        let aggregate =
+            compute_pipeline_entry(device, "dlpv/vpl_aggregate", VPL_AGGREGATE_SHADER, "aggregate", &layouts);
         let photo_tiles =
-            compute_pipeline_entry(device, "dlpv/rho_photo_tiles", AGGREGATE_SHADER, "photo_tiles", &layouts);
+            compute_pipeline_entry(device, "dlpv/vpl_photo_tiles", VPL_AGGREGATE_SHADER, "photo_tiles", &layouts);
+        let mark_cells = (gathered & GATHERED_BOUNCE != 0).then(|| {
+            let layout =
+                bind::layout(device, "dlpv/mark_cells_layout", &[bind::uniform(0, cs), bind::storage_rw(1, cs)]);
+            let group = bind::group(
+                device,
+                "dlpv/mark_cells_group",
+                &layout,
+                &[params.as_entire_binding(), blocks_read.as_entire_binding()],
+            );
+            let pipeline = compute_pipeline_entry(
+                device,
+                "dlpv/mark_cells",
+                VPL_MARK_SHADER,
+                "mark_cells",
+                &[&layout, &camera_layout],
+            );
+            (pipeline, group)
+        });
         // One group per set of maps (its texels, pairs, lights, and (side, pairs, 0, block)),
         // and the photo's tiles with a set's maps bound unread.
         let aggregate_group = |label: &str, [lights, texels, pairs]: [&wgpu::Buffer; 3], set_info: UVec4| {
@@ -246,7 +309,7 @@ impl RhoGather {
             .enumerate()
             .map(|(k, (set, &side))| AggregateSet {
                 group: aggregate_group(
-                    &format!("dlpv/rho_set{k}"),
+                    &format!("dlpv/vpl_set{k}"),
                     set.buffers,
                     UVec4::new(set.resolution, set.pairs, 0, side),
                 ),
@@ -256,12 +319,12 @@ impl RhoGather {
             .collect();
         if values.gathered.y == 1 {
             let maps = sets.first().map_or([&vpls; 3], |s| s.buffers);
-            let group = aggregate_group("dlpv/rho_photo", maps, UVec4::new(0, 0, 0, tile));
+            let group = aggregate_group("dlpv/vpl_photo", maps, UVec4::new(0, 0, 0, tile));
             aggregate_sets.push(AggregateSet { group, blocks: tiles, pairs: 0 });
         }
         let gather_layout = bind::layout(
             device,
-            "dlpv/rho_gather_layout",
+            "dlpv/vpl_gather_layout",
             &[
                 bind::uniform(0, cs),
                 bind::storage(1, cs),
@@ -269,21 +332,23 @@ impl RhoGather {
                 bind::uniform(3, cs),
                 bind::storage(4, cs),
                 bind::storage_rw(5, cs),
+                bind::storage(6, cs),
+                bind::storage(7, cs),
             ],
         );
-        let gather = compute_pipeline_entry(device, "dlpv/rho_gather", GATHER_SHADER, "gather", &[&gather_layout]);
+        let gather = compute_pipeline_entry(device, "dlpv/vpl_gather", VPL_GATHER_SHADER, "gather", &[&gather_layout]);
         let gather_sum =
-            compute_pipeline_entry(device, "dlpv/rho_gather_sum", GATHER_SHADER, "gather_sum", &[&gather_layout]);
+            compute_pipeline_entry(device, "dlpv/vpl_gather_sum", VPL_GATHER_SHADER, "gather_sum", &[&gather_layout]);
         let partials = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("dlpv/rho_partials"),
-            size: chunks as u64 * cells * PARTIAL_CELL_BYTES,
+            label: Some("dlpv/vpl_partials"),
+            size: chunks as u64 * cells * partial,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
 
         let gather_group = bind::group(
             device,
-            "dlpv/rho_gather_group",
+            "dlpv/vpl_gather_group",
             &gather_layout,
             &[
                 params.as_entire_binding(),
@@ -292,11 +357,16 @@ impl RhoGather {
                 gather_info.as_entire_binding(),
                 count.as_entire_binding(),
                 partials.as_entire_binding(),
+                injected.as_entire_binding(),
+                blocks_read.as_entire_binding(),
             ],
         );
         Self {
             aggregate,
             photo_tiles,
+            mark_cells,
+            blocks_read,
+            pixels: photo.internal_size,
             camera_group,
             sets: aggregate_sets,
             gather,
@@ -306,22 +376,32 @@ impl RhoGather {
             count,
             chunks,
             size,
+            gathered,
         }
     }
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
-        let (first, size) = cells_read(virtual_box, values);
+        let (first, size) = cells_read(virtual_box, values, self.gathered);
         self.size = size;
-        let info = GatherInfo { chunks_first: UVec4::from((self.chunks, first)), size: size.extend(0) };
+        let info = GatherInfo { chunks_first: UVec4::from((self.chunks, first)), size: size.extend(self.gathered) };
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
 
-    /// Sums the maps into VPLs, then writes V_ρ (after the propagation, which leaves it).
+    /// Sums the maps into VPLs (with the bounce light: first flags the cells the pixels read),
+    /// then writes the gathered volumes (after the propagation, which leaves them).
     pub fn record(&self, rec: &mut Recorder) {
         rec.encoder.clear_buffer(&self.count, 0, None);
+        if self.mark_cells.is_some() {
+            rec.encoder.clear_buffer(&self.blocks_read, 0, None);
+        }
         rec.compute(Self::VPLS_LABEL, |pass| {
             pass.set_bind_group(1, &self.camera_group, &[]);
+            if let Some((mark, group)) = &self.mark_cells {
+                pass.set_pipeline(mark);
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(self.pixels.0.div_ceil(8), self.pixels.1.div_ceil(8), 1);
+            }
             for set in &self.sets {
                 pass.set_pipeline(if set.pairs > 0 { &self.aggregate } else { &self.photo_tiles });
                 pass.set_bind_group(0, &set.group, &[]);
@@ -340,22 +420,3 @@ impl RhoGather {
         pass.dispatch_workgroups(blocks.x, blocks.y, blocks.z);
     }
 }
-
-const AGGREGATE_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/gbuffer.wgsl",
-    "../../../shaders/lib/lights.wgsl",
-    "../../../shaders/lib/rsm_texel.wgsl",
-    "volume.wgsl",
-    "rho_vpl.wgsl",
-    "rho_aggregate.wgsl",
-    "rho_photo.wgsl",
-);
-
-const GATHER_SHADER: &str = wgsl!(
-    "../../../shaders/lib/frame.wgsl",
-    "../../../shaders/lib/sh.wgsl",
-    "volume.wgsl",
-    "rho_vpl.wgsl",
-    "rho_gather.wgsl"
-);

@@ -8,7 +8,7 @@
 // `aggregate`: one workgroup per block of `gather_info.w`² texels of a pair of maps: R_ρ's real
 // texels (those no virtual surface hides, as V_ρ's injection) summed into one VPL (reflected
 // flux, flux-weighted position and normal, the patch's area); `photo_tiles` the same of the
-// photo's light of the real surfaces the camera sees (rho_photo.wgsl). `gather`: one invocation per
+// photo's light of the real surfaces the camera sees (vpl_photo.wgsl). `gather`: one invocation per
 // cell, the radiance of every VPL arriving at the cell's centre projected onto the cell's SH
 // (the SH of a direction, Σ E·Y(ω)), scaled to the volume's intensity convention (× h², read
 // by the merge as ⟨c, clamped cosine(−n)⟩ / h²).
@@ -16,16 +16,28 @@
 struct GatherVpl {
     // xyz: position; w: area of the patch (m²)
     position: vec4f,
-    // xyz: unit normal; w: unused
+    // xyz: unit normal; w: the volumes it lights (VPL_* bits, as a float)
     normal: vec4f,
     // rgb: reflected flux (W); w: unused
     flux: vec4f,
 }
 
-// Mirrors `GatherInfo` in rho.rs: which cells are gathered.
-struct RhoGatherInfo {
+// Mirrors `GatherInfo` in vpl_gather.rs: which cells are gathered.
+struct GatherInfo {
     // x: chunks of the VPLs; yzw: the first cell gathered
     chunks_first: vec4u,
-    // xyz: cells gathered along each axis
+    // xyz: cells gathered along each axis; w: the volumes gathered (GATHERED_* bits)
     size: vec4u,
 }
+
+// The volumes gathered: V_ρ (`dlpv.virtual_light`), and V_μ with V_Δ's indirect change
+// (`dlpv.bounce_light`).
+const GATHERED_RHO: u32 = 1u;
+const GATHERED_BOUNCE: u32 = 2u;
+
+// What a VPL lights: V_ρ, V_μ, V_Δ positively (a virtual surface's light, a virtual lamp's
+// on a real one) or negatively (a real surface's that a virtual one hides from the light).
+const VPL_RHO: u32 = 1u;
+const VPL_MU: u32 = 2u;
+const VPL_DELTA: u32 = 4u;
+const VPL_DELTA_HIDDEN: u32 = 8u;
