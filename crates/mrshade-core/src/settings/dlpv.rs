@@ -39,8 +39,9 @@ pub enum DlpvTransport {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DlpvSettings {
-    /// Cells along each side of the volumes (a power of two, 8–128). Default 32 (spec §2.12.7:
-    /// "32³ … typically in the range of 32³ to 64³").
+    /// Cells along each side of the volumes (a power of two, 8–64: 128³ cells' injection
+    /// buffer, 400 MB, is past what a GPU binds at once). Default 32 (spec §2.12.7: "32³ …
+    /// typically in the range of 32³ to 64³").
     pub resolution: u32,
     /// Side of the cubic volume as a multiple of the virtual content's largest bounding-box
     /// edge, centred on it. Default 2 ("twice the largest bounding box axis").
@@ -138,7 +139,7 @@ impl Default for DlpvSettings {
 impl DlpvSettings {
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
-        check_power_of_two(self.resolution, 8, 128, "dlpv.resolution", " cells")?;
+        check_power_of_two(self.resolution, 8, 64, "dlpv.resolution", " cells")?;
         check(
             self.extent.is_finite() && (1.0..=64.0).contains(&self.extent),
             "dlpv.extent",
