@@ -131,7 +131,15 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
         return;
     }
     append_workgroup_sum(thread, lit, select(VPL_RHO | VPL_DELTA, VPL_RHO | VPL_MU, real_light));
+    // Most blocks hold no virtual surface: one sum, not four (each a reduction with its
+    // barriers; four in every block took the pass from 0.09 to 0.19 ms on cornell at 1080p).
+    if (hiding.position.w > 0.0) { block_changes = 1u; }
+    if (workgroupUniformLoad(&block_changes) == 0u) { return; }
     append_workgroup_sum(thread, hidden, VPL_MU | VPL_DELTA_HIDDEN);
     append_workgroup_sum(thread, hidden_seen, VPL_DELTA_HIDDEN);
     append_workgroup_sum(thread, hiding, VPL_DELTA);
 }
+
+// Set by any invocation of the workgroup whose texels a virtual surface hides (every one
+// writes the same value).
+var<workgroup> block_changes: u32;
