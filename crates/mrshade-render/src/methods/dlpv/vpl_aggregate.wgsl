@@ -9,7 +9,7 @@
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
 @group(0) @binding(2) var<storage, read> pairs: array<vec4u>;
 @group(0) @binding(3) var<storage, read> lights: array<Light>;
-// V_ρ's VPLs: a block's or a tile's appended where it holds any light.
+// The VPLs: a block's or a tile's appended where they hold any light.
 @group(0) @binding(4) var<storage, read_write> vpls: array<GatherVpl>;
 // The maps' side, pairs, unused, texels (or pixels) per block side.
 @group(0) @binding(5) var<uniform> gather_info: vec4u;
