@@ -77,12 +77,6 @@ fn vpl_position(texel: RsmTexel) -> vec3f {
     return texel.position.xyz + 0.5 * cell_side() * texel.normal.xyz;
 }
 
-// Distance along the light's ray (for which of two hits is nearer).
-fn light_depth(light: Light, p: vec3f) -> f32 {
-    if (light.info.x == LIGHT_DIRECTIONAL) { return dot(p, light.direction_real.xyz); }
-    return distance(p, light.position.xyz);
-}
-
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let res = rsm_size.x;
@@ -92,12 +86,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let virt = rsm[(pair.y * res + id.y) * res + id.x];
     let light = lights[pair.z];
     let real_hit = real.position.w > 0.5;
-    let virtual_hit = virt.position.w > 0.5;
-    let virtual_nearer = virtual_hit && (!real_hit || light_depth(light, virt.position.xyz) < light_depth(light, real.position.xyz));
+    let virtual_hides = virtual_nearer(light, real, virt);
     if (light.direction_real.w < 0.5) {
         // A virtual light exists in the real+virtual solution only: R_μ is empty, and all
         // of R_ρ's bounce light is change.
-        if (virtual_nearer) {
+        if (virtual_hides) {
             if (bounce_propagated()) { splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt)); }
         } else if (real_hit) {
             let r = vpl(real);
@@ -112,7 +105,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     if (real_hit && bounce_propagated()) {
         splat(SOURCE_MU, vpl_position(real), vpl(real));
     }
-    if (!virtual_nearer) { return; }
+    if (!virtual_hides) { return; }
     if (bounce_propagated()) { splat(SOURCE_INDIRECT, vpl_position(virt), vpl(virt)); }
     if (!real_hit) { return; }
     let r = vpl(real);

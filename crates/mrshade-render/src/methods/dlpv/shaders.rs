@@ -11,6 +11,7 @@ pub const INJECT_SHADER: &str = wgsl!(
     "../../../shaders/lib/rsm_texel.wgsl",
     "../../../shaders/lib/probe_light.wgsl",
     "volume.wgsl",
+    "rsm_pair.wgsl",
     "inject.wgsl",
 );
 
@@ -44,6 +45,7 @@ pub const VPL_AGGREGATE_SHADER: &str = wgsl!(
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
     "volume.wgsl",
+    "rsm_pair.wgsl",
     "vpl.wgsl",
     "vpl_aggregate.wgsl",
     "vpl_photo.wgsl",

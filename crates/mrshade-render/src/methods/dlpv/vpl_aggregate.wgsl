@@ -78,11 +78,6 @@ fn append_workgroup_sum(thread: u32, sum: Sum, lights: u32) {
 
 fn bounce_gathered() -> bool { return (cells_gathered.size.w & GATHERED_BOUNCE) != 0u; }
 
-fn light_depth(light: Light, p: vec3f) -> f32 {
-    if (light.info.x == LIGHT_DIRECTIONAL) { return dot(p, light.direction_real.xyz); }
-    return distance(p, light.position.xyz);
-}
-
 @compute @workgroup_size(8, 8)
 fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) local: vec3u,
              @builtin(local_invocation_index) thread: u32) {
@@ -108,9 +103,7 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             let real = rsm[(pair.x * res + y) * res + x];
             let virt = rsm[(pair.y * res + y) * res + x];
             let real_hit = real.position.w > 0.5;
-            let virtual_nearer = virt.position.w > 0.5
-                && (!real_hit || light_depth(light, virt.position.xyz) < light_depth(light, real.position.xyz));
-            if (virtual_nearer) {
+            if (virtual_nearer(light, real, virt)) {
                 hiding = plus(hiding, texel_sum(virt));
                 if (real_hit && real_light) {
                     if (photo && seen_by_camera(real.position.xyz, real.normal.xyz, cell_side())) {
