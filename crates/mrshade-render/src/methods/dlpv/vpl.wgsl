@@ -28,14 +28,10 @@ struct GatherVpl {
 struct GatherInfo {
     // x: chunks of the VPLs; yzw: the first cell gathered
     chunks_first: vec4u,
-    // xyz: cells gathered along each axis; w: the volumes gathered (GATHERED_* bits)
+    // xyz: cells gathered along each axis; w: unused (which volumes are gathered:
+    // volume.wgsl `rho_propagated`, `bounce_propagated`)
     size: vec4u,
 }
-
-// The volumes gathered: V_ρ (`dlpv.virtual_light`), and V_μ with V_Δ's indirect change
-// (`dlpv.bounce_light`).
-const GATHERED_RHO: u32 = 1u;
-const GATHERED_BOUNCE: u32 = 2u;
 
 // What a VPL lights: V_ρ, V_μ, V_Δ positively (a virtual surface's light, a virtual lamp's
 // on a real one) or negatively (a real surface's that a virtual one hides from the light).

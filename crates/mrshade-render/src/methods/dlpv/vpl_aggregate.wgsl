@@ -76,8 +76,6 @@ fn append_workgroup_sum(thread: u32, sum: Sum, lights: u32) {
     workgroupBarrier();
 }
 
-fn bounce_gathered() -> bool { return (cells_gathered.size.w & GATHERED_BOUNCE) != 0u; }
-
 @compute @workgroup_size(8, 8)
 fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) local: vec3u,
              @builtin(local_invocation_index) thread: u32) {
@@ -119,7 +117,7 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             lit = plus(lit, texel_sum(real));
         }
     }
-    if (!bounce_gathered()) {
+    if (bounce_propagated()) {
         append_workgroup_sum(thread, lit, VPL_RHO);
         return;
     }

@@ -29,11 +29,12 @@ struct GatherVpl {
 struct GatherInfo {
     /// x: chunks of the VPLs; yzw: the first cell gathered.
     chunks_first: UVec4,
-    /// xyz: cells gathered along each axis; w: the volumes gathered (`GATHERED_*`).
+    /// xyz: cells gathered along each axis; w: unused.
     size: UVec4,
 }
 
-/// The volumes gathered (vpl.wgsl `GATHERED_*`): V_ρ; V_μ and V_Δ's indirect change.
+/// The volumes gathered (the shaders read them from `DlpvParams::gathered`): V_ρ; V_μ and
+/// V_Δ's indirect change.
 pub(super) const GATHERED_RHO: u32 = 1;
 pub(super) const GATHERED_BOUNCE: u32 = 2;
 
@@ -193,7 +194,7 @@ impl VplGather {
             label: Some("dlpv/vpl_gather_info"),
             contents: bytemuck::bytes_of(&GatherInfo {
                 chunks_first: UVec4::from((chunks, first)),
-                size: size.extend(gathered),
+                size: size.extend(0),
             }),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
@@ -384,7 +385,7 @@ impl VplGather {
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
         let (first, size) = cells_read(virtual_box, values, self.gathered);
         self.size = size;
-        let info = GatherInfo { chunks_first: UVec4::from((self.chunks, first)), size: size.extend(self.gathered) };
+        let info = GatherInfo { chunks_first: UVec4::from((self.chunks, first)), size: size.extend(0) };
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
 

@@ -72,16 +72,14 @@ fn vpl_light(vpl: GatherVpl, x: vec3f, c: ptr<function, CellSums>) {
     }
 }
 
-fn bounce_gathered() -> bool { return (gather_info.size.w & GATHERED_BOUNCE) != 0u; }
-
 // Vectors per cell in `partials`: V_ρ's three channels, or V_ρ's, V_Δ's and V_μ's.
-fn partial_vectors() -> u32 { return select(3u, 9u, bounce_gathered()); }
+fn partial_vectors() -> u32 { return select(9u, 3u, bounce_propagated()); }
 
 // Whether block `block` of 4³ cells (of the gathered box) holds a cell the merge reads: with
 // the bounce light gathered the box is the whole volume and `mark_cells` (mark_cells.wgsl) has
 // flagged the blocks; V_ρ alone gathers its box whole.
 fn block_read(block: vec3u, blocks: vec3u) -> bool {
-    if (!bounce_gathered()) { return true; }
+    if (bounce_propagated()) { return true; }
     return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] != 0u;
 }
 
@@ -118,7 +116,7 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     partials[at] = c.rho_r;
     partials[at + 1u] = c.rho_g;
     partials[at + 2u] = c.rho_b;
-    if (!bounce_gathered()) { return; }
+    if (bounce_propagated()) { return; }
     partials[at + 3u] = c.delta_r;
     partials[at + 4u] = c.delta_g;
     partials[at + 5u] = c.delta_b;
@@ -139,7 +137,7 @@ fn gather_sum(@builtin(global_invocation_id) id: vec3u) {
         // Volume v (V_ρ, V_Δ, V_μ as the accumulated volumes), channel ch.
         let v = j / 3u;
         let ch = j % 3u;
-        if (v == 0u && (gather_info.size.w & GATHERED_RHO) == 0u) { continue; }
+        if (v == 0u && rho_propagated()) { continue; }
         var c = vec4f(0.0);
         for (var chunk = 0u; chunk < gather_info.chunks_first.x; chunk++) {
             c += partials[(chunk * cells_gathered() + in_box) * k + j];
