@@ -14,19 +14,25 @@ fn sh4_clamped_cosine(d: vec3f) -> vec4f {
     return vec4f(PI * SH_Y0, 2.0 * PI / 3.0 * SH_Y1 * vec3f(d.y, d.z, d.x));
 }
 
-// Bands 0–2, nine functions (mrshade_core::sh::basis9).
-fn sh9(d: vec3f) -> array<f32, 9> {
-    return array<f32, 9>(
-        SH_Y0,
-        SH_Y1 * d.y,
-        SH_Y1 * d.z,
-        SH_Y1 * d.x,
+// Band 2's first four functions (coefficients 4–7) at unit direction `d`.
+fn sh9_band2(d: vec3f) -> vec4f {
+    return vec4f(
         1.0925484 * d.x * d.y,
         1.0925484 * d.y * d.z,
         0.31539157 * (3.0 * d.z * d.z - 1.0),
         1.0925484 * d.x * d.z,
-        0.5462742 * (d.x * d.x - d.y * d.y),
     );
+}
+
+// Band 2's last function (coefficient 8).
+fn sh9_y8(d: vec3f) -> f32 {
+    return 0.5462742 * (d.x * d.x - d.y * d.y);
+}
+
+// Bands 0–2, nine functions (mrshade_core::sh::basis9).
+fn sh9(d: vec3f) -> array<f32, 9> {
+    let b = sh9_band2(d);
+    return array<f32, 9>(SH_Y0, SH_Y1 * d.y, SH_Y1 * d.z, SH_Y1 * d.x, b.x, b.y, b.z, b.w, sh9_y8(d));
 }
 
 // Bands 0–3, sixteen functions (mrshade_core::sh::basis16): 16-coefficient PRT.

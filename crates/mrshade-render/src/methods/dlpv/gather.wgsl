@@ -1,7 +1,8 @@
 // The merge with the real scene (Franke §2.12.6, Eq. 5.14–5.16), per pixel: the accumulated
 // volumes are read trilinearly half a cell along the surface normal (where injection put
 // its light) and evaluated for the inverted normal, E = ⟨c, clamped cosine(−n)⟩ / h², the
-// irradiance of a cell's intensity over its cross-section. Virtual pixels take V_ρ's light
+// irradiance of a cell's intensity over its cross-section (V_ρ gathered from VPLs with its
+// band 2). Virtual pixels take V_ρ's light
 // (Eq. 5.15); real ones the real scene's bounce light of V_μ in both L_rv and L_r (the
 // model of the photo the α-scaled composite divides by) and the signed change of V_Δ in
 // L_rv (Eq. 5.16), so that L_rv − L_r is the change. On real pixels the virtual content's
@@ -29,6 +30,8 @@
 @group(1) @binding(2) var<storage, read> probe_heights: array<f32>;
 @group(1) @binding(3) var<uniform> probe_info: vec4u;
 @group(1) @binding(4) var<storage, read> probe_heights_near: array<f32>;
+// V_ρ's band 2 where it is gathered (volume.wgsl).
+@group(1) @binding(5) var<storage, read> rho_band2: array<vec4f>;
 
 // Group 2: the IndirectLight targets (shaders/lib/indirect_out.wgsl).
 
@@ -50,12 +53,24 @@ fn cell_light(volume: u32, i: u32, lobe: vec4f) -> vec3f {
     );
 }
 
-// Irradiance from `volume` at `p` on a surface of normal `n`; zero outside the volume.
+// Band 2 of cell `i` of V_ρ against the clamped cosine's band 2 (`lobe`: coefficients 4–7,
+// `lobe8`: 8).
+fn rho_band2_light(i: u32, lobe: vec4f, lobe8: f32) -> vec3f {
+    let at = i * 4u;
+    return vec3f(dot(rho_band2[at], lobe), dot(rho_band2[at + 1u], lobe), dot(rho_band2[at + 2u], lobe))
+        + rho_band2[at + 3u].rgb * lobe8;
+}
+
+// Irradiance from `volume` at `p` on a surface of normal `n`; zero outside the volume. V_ρ
+// gathered from VPLs adds its band 2 (Â_2 = π/4; even, so the same for n and −n).
 fn volume_irradiance(volume: u32, p: vec3f, n: vec3f) -> vec3f {
     let x = cell_coords(p + 0.5 * cell_side() * n) - 0.5;
     let base = vec3i(floor(x));
     let f = x - floor(x);
     let lobe = sh4_clamped_cosine(-n);
+    let band2 = volume == VOLUME_RHO && !rho_propagated();
+    let lobe2 = PI / 4.0 * sh9_band2(n);
+    let lobe8 = PI / 4.0 * sh9_y8(n);
     var e = vec3f(0.0);
     for (var corner = 0u; corner < 8u; corner++) {
         let o = vec3u(corner & 1u, (corner >> 1u) & 1u, corner >> 2u);
@@ -63,7 +78,9 @@ fn volume_irradiance(volume: u32, p: vec3f, n: vec3f) -> vec3f {
         if (!cell_inside(c)) { continue; }
         let w3 = select(1.0 - f, f, vec3<bool>(o == vec3u(1u)));
         let w = w3.x * w3.y * w3.z;
-        e += w * cell_light(volume, cell_index(c), lobe);
+        var light = cell_light(volume, cell_index(c), lobe);
+        if (band2) { light += rho_band2_light(cell_index(c), lobe2, lobe8); }
+        e += w * light;
     }
     return e / (cell_side() * cell_side());
 }

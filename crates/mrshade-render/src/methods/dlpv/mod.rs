@@ -79,6 +79,8 @@ const VOLUMES: u64 = 3;
 
 /// Bytes of one cell of one float volume: four coefficients × three channels.
 const CELL_BYTES: u64 = 48;
+/// Bytes of one cell of V_ρ's band 2 (volume.wgsl `rho_band2`): four vec4f.
+const BAND2_CELL_BYTES: u64 = 64;
 /// Bytes of one cell of one source's scratch volume: four half-float coefficients × three
 /// channels (propagate.wgsl).
 pub const SCRATCH_CELL_BYTES: u64 = 24;
@@ -113,6 +115,8 @@ pub struct DlpvMethod {
     /// The accumulated V_ρ, V_Δ and V_μ, one after the other (three RGB × four SH
     /// coefficients per cell each).
     pub volumes: wgpu::Buffer,
+    /// V_ρ's band 2 where it is gathered from VPLs (volume.wgsl `rho_band2`).
+    pub rho_band2: wgpu::Buffer,
     /// V_ρ summed over VPLs (`dlpv.virtual_light = "gathered"`).
     vpl_gather: Option<VplGather>,
     /// The per-pixel pass, over the internal size.
@@ -197,7 +201,10 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
         ),
         (
             "dlpv volumes (dlpv.resolution³)",
-            cells * (SOURCES as u64 * (CELL_BYTES + 2 * SCRATCH_CELL_BYTES) + 2 * VOLUMES * CELL_BYTES),
+            cells
+                * (SOURCES as u64 * (CELL_BYTES + 2 * SCRATCH_CELL_BYTES)
+                    + 2 * VOLUMES * CELL_BYTES
+                    + BAND2_CELL_BYTES),
         ),
         (
             "dlpv gathered volumes (VPLs of the maps and the photo, partial sums)",
@@ -426,12 +433,14 @@ impl DlpvMethod {
             })
             .collect();
         let volumes = sums[updates[max_steps as usize + 1] % 2].clone();
+        let rho_band2 = buffer("dlpv/rho_band2", cells as u64 * BAND2_CELL_BYTES);
         let vpl_gather = (gathered != 0).then(|| {
             let photo = VplPhoto { frame_uniforms, gbuffer, photo: inputs.photo, internal_size };
             VplGather::new(
                 device,
                 &step_params[0],
                 &volumes,
+                &rho_band2,
                 &injected,
                 gathered,
                 &map_sets,
@@ -454,12 +463,15 @@ impl DlpvMethod {
             &scene.materials.buffer,
         );
         // 0: the three volumes; 1–4: the probe's lights' lookups, their maps' heights, counts
-        // and highest surfaces near each texel (the pixels' shadows of the probe).
+        // and highest surfaces near each texel (the pixels' shadows of the probe); 5: V_ρ's
+        // band 2.
         let mut entries = vec![bind::storage(0, cs)];
         entries.extend(ProbeMaps::layout_entries(1));
+        entries.push(bind::storage(5, cs));
         let volume_layout = bind::layout(device, "dlpv/volume_layout", &entries);
         let mut resources = vec![volumes.as_entire_binding()];
         resources.extend(probe.resources());
+        resources.push(rho_band2.as_entire_binding());
         let volume_group = bind::group(device, "dlpv/volume_group", &volume_layout, &resources);
         let indirect = IndirectLight::new(device, "dlpv/indirect", internal_size);
         let indirect_layout = bind::layout(device, "dlpv/indirect_layout", &IndirectLight::storage_entries());
@@ -492,6 +504,7 @@ impl DlpvMethod {
             dispatches,
             first_sums,
             volumes,
+            rho_band2,
             vpl_gather,
             gather: Dispatch {
                 pipeline: gather,
@@ -579,6 +592,7 @@ impl LightTransport for DlpvMethod {
                 if self.params.gathered.x == 1 {
                     // V_ρ's cells beyond those gathered are never read: zero.
                     rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
+                    rec.encoder.clear_buffer(&self.rho_band2, 0, None);
                 }
                 gather.record(rec);
             }

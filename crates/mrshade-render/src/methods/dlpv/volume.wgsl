@@ -1,6 +1,8 @@
 // The volumes of delta light propagation (Franke §2.12): a cube of `res`³ cells around the
 // virtual content, each holding four SH coefficients of radiant intensity per color channel
-// (three vec4f per cell, channel-major). Mirrors `DlpvParams` in mod.rs.
+// (three vec4f per cell, channel-major), and V_ρ gathered from VPLs its band 2 beside them,
+// `rho_band2`: four vec4f per cell, coefficients 4–7 of red, green, blue, then coefficient 8
+// of the three in rgb (vpl_gather.wgsl). Mirrors `DlpvParams` in mod.rs.
 
 struct DlpvParams {
     // xyz: world position of the lower corner; w: cell side h (m)

@@ -31,11 +31,19 @@ struct GatherInfo {
     // xyz: cells gathered along each axis; w: unused (which volumes are gathered:
     // volume.wgsl `rho_propagated`, `bounce_propagated`)
     size: vec4u,
+    // xyz: the first cell of V_ρ's, those virtual pixels read; w: unused
+    rho_first: vec4u,
+    // xyz: one past its last cell; w: unused
+    rho_end: vec4u,
 }
 
 // What a VPL lights: V_ρ, V_μ, V_Δ positively (a virtual surface's light, a virtual lamp's
 // on a real one) or negatively (a real surface's that a virtual one hides from the light).
+// V_ρ has bands 0–2 (vpl_gather.wgsl `CellSums`).
 const VPL_RHO: u32 = 1u;
 const VPL_MU: u32 = 2u;
 const VPL_DELTA: u32 = 4u;
 const VPL_DELTA_HIDDEN: u32 = 8u;
+// Taken from V_ρ: a real surface the camera sees (its photo's light is in V_ρ, vpl_photo.wgsl)
+// that a virtual surface hides from the light — the virtual objects' shadow on it.
+const VPL_RHO_HIDDEN: u32 = 16u;

@@ -1,8 +1,8 @@
 // `aggregate` of the gathered volumes (vpl.wgsl): one workgroup per block of
 // `gather_info.w`² texels of a pair of maps, summed into VPLs by what they light: R_ρ's real
-// texels (those no virtual surface hides, as V_ρ's injection: V_ρ and V_μ); with the bounce
-// light gathered also the real texels a virtual surface hides (V_μ, and taken from V_Δ) and
-// the virtual surfaces that hide them (added to V_Δ). A virtual lamp's light is all change:
+// texels (those no virtual surface hides, as V_ρ's injection: V_ρ and V_μ) and its virtual
+// ones (V_ρ); with the bounce light gathered also the real texels a virtual surface hides
+// (V_μ, and taken from V_Δ) and the virtual surfaces that hide them (added to V_Δ). A virtual lamp's light is all change:
 // its real texels light V_ρ and V_Δ, never V_μ. With the photo's light (`photo_tiles`,
 // vpl_photo.wgsl) V_ρ and V_μ leave the texels the camera sees to the photo; V_Δ keeps them.
 @group(0) @binding(0) var<uniform> params: DlpvParams;
@@ -117,18 +117,27 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             lit = plus(lit, texel_sum(real));
         }
     }
-    if (bounce_propagated()) {
-        append_workgroup_sum(thread, lit, VPL_RHO);
-        return;
-    }
-    append_workgroup_sum(thread, lit, select(VPL_RHO | VPL_DELTA, VPL_RHO | VPL_MU, real_light));
+    let gathered_bounce = !bounce_propagated();
+    let lit_lights = select(VPL_RHO | VPL_DELTA, VPL_RHO | VPL_MU, real_light);
+    append_workgroup_sum(thread, lit, select(VPL_RHO, lit_lights, gathered_bounce));
     // Most blocks hold no virtual surface: one sum, not four (each a reduction with its
     // barriers; four in every block took the pass from 0.09 to 0.19 ms on cornell at 1080p).
     if (hiding.position.w > 0.0) { block_changes = 1u; }
     if (workgroupUniformLoad(&block_changes) == 0u) { return; }
+    // V_ρ as Franke's R_ρ injects it: the lit virtual texels light the virtual objects too
+    // (one bounce between them: a torus's hole, blocks facing each other), and the real
+    // surfaces the camera sees in the virtual content's shadow take from it the light of the
+    // photo that the shadow removes (`VPL_RHO_HIDDEN`). Without either, cornell's virtual faces
+    // beside its shadowed walls took 16–30 % too much light and desk-spot-real's too little
+    // (docs/benchmarks.md, 2026-12-06).
+    if (!gathered_bounce) {
+        append_workgroup_sum(thread, hidden_seen, VPL_RHO_HIDDEN);
+        append_workgroup_sum(thread, hiding, VPL_RHO);
+        return;
+    }
     append_workgroup_sum(thread, hidden, VPL_MU | VPL_DELTA_HIDDEN);
-    append_workgroup_sum(thread, hidden_seen, VPL_DELTA_HIDDEN);
-    append_workgroup_sum(thread, hiding, VPL_DELTA);
+    append_workgroup_sum(thread, hidden_seen, VPL_DELTA_HIDDEN | VPL_RHO_HIDDEN);
+    append_workgroup_sum(thread, hiding, VPL_DELTA | VPL_RHO);
 }
 
 // Set by any invocation of the workgroup whose texels a virtual surface hides (every one

@@ -31,6 +31,23 @@ struct GatherInfo {
     chunks_first: UVec4,
     /// xyz: cells gathered along each axis; w: unused.
     size: UVec4,
+    /// xyz: the first cell of V_ρ's (`rho_cells`); w: unused.
+    rho_first: UVec4,
+    /// xyz: one past its last cell; w: unused.
+    rho_end: UVec4,
+}
+
+impl GatherInfo {
+    fn new(chunks: u32, virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams, gathered: u32) -> Self {
+        let (first, size) = cells_read(virtual_box, params, gathered);
+        let (rho_first, rho_size) = rho_cells(virtual_box, params);
+        Self {
+            chunks_first: UVec4::from((chunks, first)),
+            size: size.extend(0),
+            rho_first: rho_first.extend(0),
+            rho_end: (rho_first + rho_size).extend(0),
+        }
+    }
 }
 
 /// The volumes gathered (the shaders read them from `DlpvParams::gathered`): V_ρ; V_μ and
@@ -38,21 +55,27 @@ struct GatherInfo {
 pub(super) const GATHERED_RHO: u32 = 1;
 pub(super) const GATHERED_BOUNCE: u32 = 2;
 
-/// Volumes whose partial sums the gather keeps (vpl_gather.wgsl `volumes_gathered`).
-fn volumes_summed(gathered: u32) -> u64 {
-    if gathered & GATHERED_BOUNCE != 0 { 3 } else { 1 }
+/// Bytes of one cell's partial sums over one chunk (vpl_gather.wgsl `partials`): V_ρ's bands
+/// 0–2 (seven vec4f), with the bounce light V_Δ's and V_μ's bands 0–1 (three each).
+fn partial_cell_bytes(gathered: u32) -> u64 {
+    16 * if gathered & GATHERED_BOUNCE != 0 { 13 } else { 7 }
 }
 
 /// The cells gathered: with the bounce light (real pixels read any) every one; for V_ρ alone
-/// those of the virtual content's box and one cell around it (the merge reads half a cell off
-/// a surface, trilinearly: at most the next cell out), within the volume, all of it without
-/// virtual content. Other cells are never read (virtual pixels only) and left at zero.
+/// its cells (`rho_cells`).
 fn cells_read(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams, gathered: u32) -> (UVec3, UVec3) {
+    if gathered & GATHERED_BOUNCE != 0 {
+        return (UVec3::ZERO, UVec3::splat(params.info.x));
+    }
+    rho_cells(virtual_box, params)
+}
+
+/// The cells of V_ρ that virtual pixels read: those of the virtual content's box and one cell
+/// around it (the merge reads half a cell off a surface, trilinearly: at most the next cell
+/// out), within the volume, all of it without virtual content. Others are left at zero.
+fn rho_cells(virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams) -> (UVec3, UVec3) {
     let res = params.info.x;
     let all = (UVec3::ZERO, UVec3::splat(res));
-    if gathered & GATHERED_BOUNCE != 0 {
-        return all;
-    }
     let Some((lo, hi)) = virtual_box else { return all };
     let origin = params.origin.truncate();
     let h = params.origin.w;
@@ -90,7 +113,7 @@ pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64, gathere
     let map_vpls: u64 = pairs_texels.iter().map(|&(pairs, texels)| pairs * (texels / (block * block)).max(1)).sum();
     let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK } else { 1 };
     let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
-    let partial = volumes_summed(gathered) * PARTIAL_CELL_BYTES;
+    let partial = partial_cell_bytes(gathered);
     (map_vpls * per_block + photo_vpls) * vpl + chunks(cells, partial) as u64 * cells * partial
 }
 
@@ -148,11 +171,10 @@ pub(super) struct VplGather {
 }
 
 /// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
-const PARTIAL_BYTES: u64 = 32 << 20;
-
-/// Bytes of one cell's partial sum of one volume over one chunk (vpl_gather.wgsl `partials`: a
-/// vec4f of SH coefficients per channel).
-const PARTIAL_CELL_BYTES: u64 = 3 * 16;
+/// 48 MiB: seven chunks of 32³ cells with V_ρ's band 2 (13 vec4f a cell), as many as without
+/// it at 32 MiB; four took the gather from 0.18 to 0.28 ms on cornell at 1080p on the H100
+/// (docs/benchmarks.md, 2026-12-06).
+const PARTIAL_BYTES: u64 = 48 << 20;
 
 impl VplGather {
     /// GPU timing label of the maps' and the photo's VPLs.
@@ -161,6 +183,7 @@ impl VplGather {
     pub const LABEL: &'static str = "dlpv-vpl-gather";
 
     /// `params`: the volumes' uniform; `volumes`: the accumulated volumes, V_ρ first;
+    /// `rho_band2`: V_ρ's band 2 (volume.wgsl);
     /// `injected`: the injection (V_Δ's direct change); `gathered`: the volumes gathered
     /// (`GATHERED_*`); `block`: texels per VPL side (at most the maps' side); `virtual_box`
     /// and `values`: where the cells read lie.
@@ -169,6 +192,7 @@ impl VplGather {
         device: &wgpu::Device,
         params: &wgpu::Buffer,
         volumes: &wgpu::Buffer,
+        rho_band2: &wgpu::Buffer,
         injected: &wgpu::Buffer,
         gathered: u32,
         sets: &[MapSet],
@@ -187,15 +211,13 @@ impl VplGather {
         let map_vpls: u32 = counts.iter().sum::<u32>() * per_block;
         let total = map_vpls + tiles[0] * tiles[1];
         let cells = (values.info.x as u64).pow(3);
-        let partial = volumes_summed(gathered) * PARTIAL_CELL_BYTES;
+        let partial = partial_cell_bytes(gathered);
         let chunks = chunks(cells, partial);
-        let (first, size) = cells_read(virtual_box, values, gathered);
+        let info = GatherInfo::new(chunks, virtual_box, values, gathered);
+        let size = info.size.truncate();
         let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dlpv/vpl_gather_info"),
-            contents: bytemuck::bytes_of(&GatherInfo {
-                chunks_first: UVec4::from((chunks, first)),
-                size: size.extend(0),
-            }),
+            contents: bytemuck::bytes_of(&info),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let count = device.create_buffer(&wgpu::BufferDescriptor {
@@ -335,6 +357,7 @@ impl VplGather {
                 bind::storage_rw(5, cs),
                 bind::storage(6, cs),
                 bind::storage(7, cs),
+                bind::storage_rw(8, cs),
             ],
         );
         let gather = compute_pipeline_entry(device, "dlpv/vpl_gather", VPL_GATHER_SHADER, "gather", &[&gather_layout]);
@@ -360,6 +383,7 @@ impl VplGather {
                 partials.as_entire_binding(),
                 injected.as_entire_binding(),
                 blocks_read.as_entire_binding(),
+                rho_band2.as_entire_binding(),
             ],
         );
         Self {
@@ -383,9 +407,8 @@ impl VplGather {
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
-        let (first, size) = cells_read(virtual_box, values, self.gathered);
-        self.size = size;
-        let info = GatherInfo { chunks_first: UVec4::from((self.chunks, first)), size: size.extend(0) };
+        let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered);
+        self.size = info.size.truncate();
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
 

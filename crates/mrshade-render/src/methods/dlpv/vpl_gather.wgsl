@@ -1,9 +1,10 @@
 // `gather` of the volumes gathered from VPLs (vpl.wgsl): V_ρ over the cells of the
 // virtual content's box and one cell around it (the only ones virtual pixels read), with the
-// bounce light gathered V_μ and V_Δ's indirect change over every cell (real pixels read any),
-// each VPL adding to the volumes it lights (VPL_*): a workgroup per 4³ cells
-// and chunk of the VPLs, which it reads 64 at a time into workgroup memory, each invocation
-// one cell's sum over the chunk (`gather`); then each cell's chunks summed (`gather_sum`). One
+// bounce light gathered V_μ and V_Δ's indirect change over every cell
+// (real pixels read any), each VPL adding to the volumes it lights (VPL_*): a workgroup per
+// 4³ cells and chunk of the VPLs, which it reads 64 at a time into workgroup memory, each
+// invocation one cell's sum over the chunk (`gather`); then each cell's chunks summed
+// (`gather_sum`). One
 // invocation per cell over all VPLs ran a few waves on the whole GPU, each waiting on its
 // reads: 7 ms for cornell's 6 500 cells and 12 000 VPLs on an H100. A VPL's patch
 // of area A, exitance M = Φ/A, lights the cell's centre x with the irradiance of a disk
@@ -20,129 +21,196 @@
 @group(0) @binding(2) var<storage, read_write> volumes: array<vec4f>;
 @group(0) @binding(3) var<uniform> gather_info: GatherInfo;
 @group(0) @binding(4) var<storage, read> vpl_count: u32;
-// Per chunk, per cell gathered, per volume gathered (V_ρ, then V_Δ and V_μ), per channel:
-// its sum over the chunk.
+// Per chunk, per cell gathered: its sums over the chunk, `RHO_VECTORS` of V_ρ (`RhoSums`),
+// then three of V_Δ and three of V_μ (a channel each; `BounceSums`).
 @group(0) @binding(5) var<storage, read_write> partials: array<vec4f>;
 // The injection (inject.wgsl), for V_Δ's direct change.
 @group(0) @binding(6) var<storage, read> injected: array<i32>;
 // Per block of 4³ cells, 1 where a pixel reads one of them (`mark_cells`).
 @group(0) @binding(7) var<storage, read> blocks_read: array<u32>;
+// V_ρ's band 2 per cell (volume.wgsl `rho_band2`), which `gather_sum` writes with V_ρ.
+@group(0) @binding(8) var<storage, read_write> rho_band2: array<vec4f>;
 
 const TILE: u32 = 64u;
 var<workgroup> tile: array<GatherVpl, 64>;
 var<workgroup> shared_count: u32;
 
-// One cell's sums: per volume (V_ρ, V_Δ, V_μ) and channel, four SH coefficients. Fields, not
-// an array: an array indexed in a loop went to local memory, and the gather ran 8–12 times
-// slower (docs/benchmarks.md, 2026-12-06).
-struct CellSums {
-    rho_r: vec4f, rho_g: vec4f, rho_b: vec4f,
+// One cell's sums of V_ρ per channel: bands 0–1, band 2's coefficients 4–7, and coefficient
+// 8 of the three channels. Nine coefficients: with four, light from behind a face subtracted a
+// third of itself from the face and light along it added a third (the clamped cosine of bands
+// 0–1, 1/3 + 2/3·cos θ of its peak), and cornell's virtual faces took the colours of the walls
+// beside them (docs/benchmarks.md, 2026-12-06). Fields, not an array: an array indexed in a
+// loop went to local memory, and the gather ran 8–12 times slower (the same, 2026-12-06).
+struct RhoSums {
+    r: vec4f, g: vec4f, b: vec4f,
+    r2: vec4f, g2: vec4f, b2: vec4f, rgb8: vec4f,
+}
+
+// One cell's sums of V_Δ and V_μ per channel, four coefficients.
+struct BounceSums {
     delta_r: vec4f, delta_g: vec4f, delta_b: vec4f,
     mu_r: vec4f, mu_g: vec4f, mu_b: vec4f,
 }
 
-// The light of one VPL at `x`, a cell centre, added as SH coefficients per channel, E·Y(ω),
-// to each volume it lights (the same VPL in every invocation of the workgroup: the tests
-// are uniform).
-fn vpl_light(vpl: GatherVpl, x: vec3f, c: ptr<function, CellSums>) {
-    let n = vpl.normal.xyz;
+// Vectors of V_ρ in a cell's partial sums (`RhoSums`); V_Δ's and V_μ's three each follow.
+const RHO_VECTORS: u32 = 7u;
+
+// The irradiance one VPL gives at `x`, a cell centre, and the way its light goes there
+// (`e` zero behind the VPL).
+struct VplAtCell {
+    e: vec3f,
+    way: vec3f,
+}
+
+fn vpl_at_cell(vpl: GatherVpl, x: vec3f) -> VplAtCell {
     let d = x - vpl.position.xyz;
     let dist2 = max(dot(d, d), 1e-12);
-    let to_cell = d * inverseSqrt(dist2);
-    let cos_v = dot(n, to_cell);
-    if (cos_v <= 0.0) { return; }
-    let e = vpl.flux.rgb * (cos_v / (PI * (dist2 + vpl.position.w / PI)));
-    let y = sh4(to_cell);
-    let lights = u32(vpl.normal.w);
-    if ((lights & VPL_RHO) != 0u) {
-        (*c).rho_r += e.r * y;
-        (*c).rho_g += e.g * y;
-        (*c).rho_b += e.b * y;
-    }
+    let way = d * inverseSqrt(dist2);
+    let cos_v = max(dot(vpl.normal.xyz, way), 0.0);
+    return VplAtCell(vpl.flux.rgb * (cos_v / (PI * (dist2 + vpl.position.w / PI))), way);
+}
+
+// One VPL's light at a cell (`at`, `lights`: its VPL_* bits) added to V_ρ as SH coefficients
+// per channel, E·Y(ω) (the same VPL in every invocation of the workgroup: the tests are
+// uniform).
+fn rho_light(at: VplAtCell, lights: u32, c: ptr<function, RhoSums>) {
+    if ((lights & (VPL_RHO | VPL_RHO_HIDDEN)) == 0u) { return; }
+    let e = select(at.e, -at.e, (lights & VPL_RHO_HIDDEN) != 0u);
+    let y = sh4(at.way);
+    (*c).r += e.r * y;
+    (*c).g += e.g * y;
+    (*c).b += e.b * y;
+    let y2 = sh9_band2(at.way);
+    (*c).r2 += e.r * y2;
+    (*c).g2 += e.g * y2;
+    (*c).b2 += e.b * y2;
+    (*c).rgb8 += vec4f(e * sh9_y8(at.way), 0.0);
+}
+
+// The same for V_Δ and V_μ.
+fn bounce_light(at: VplAtCell, lights: u32, c: ptr<function, BounceSums>) {
+    let y = sh4(at.way);
     if ((lights & (VPL_DELTA | VPL_DELTA_HIDDEN)) != 0u) {
-        let signed = select(e, -e, (lights & VPL_DELTA_HIDDEN) != 0u);
+        let signed = select(at.e, -at.e, (lights & VPL_DELTA_HIDDEN) != 0u);
         (*c).delta_r += signed.r * y;
         (*c).delta_g += signed.g * y;
         (*c).delta_b += signed.b * y;
     }
     if ((lights & VPL_MU) != 0u) {
-        (*c).mu_r += e.r * y;
-        (*c).mu_g += e.g * y;
-        (*c).mu_b += e.b * y;
+        (*c).mu_r += at.e.r * y;
+        (*c).mu_g += at.e.g * y;
+        (*c).mu_b += at.e.b * y;
     }
 }
 
-// Vectors per cell in `partials`: V_ρ's three channels, or V_ρ's, V_Δ's and V_μ's.
-fn partial_vectors() -> u32 { return select(9u, 3u, bounce_propagated()); }
+// Vectors per cell in `partials`: V_ρ's, or V_ρ's, V_Δ's and V_μ's.
+fn partial_vectors() -> u32 { return select(RHO_VECTORS + 6u, RHO_VECTORS, bounce_propagated()); }
 
 // Whether block `block` of 4³ cells (of the gathered box) holds a cell the merge reads: with
 // the bounce light gathered the box is the whole volume and `mark_cells` (mark_cells.wgsl) has
-// flagged the blocks; V_ρ alone gathers its box whole.
+// flagged the blocks.
 fn block_read(block: vec3u, blocks: vec3u) -> bool {
-    if (bounce_propagated()) { return true; }
     return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] != 0u;
 }
 
 fn cells_gathered() -> u32 { return gather_info.size.x * gather_info.size.y * gather_info.size.z; }
 
+// The first VPL and one past the last of chunk `chunk` of `count`.
+fn chunk_range(chunk: u32, count: u32) -> vec2u {
+    let chunks = gather_info.chunks_first.x;
+    let per_chunk = (count + chunks - 1u) / chunks;
+    let begin = chunk * per_chunk;
+    return vec2u(begin, min(begin + per_chunk, count));
+}
+
+// One workgroup per 4³ cells of the gathered box and chunk: V_μ's and V_Δ's sums with the
+// bounce light gathered, V_ρ's in the blocks that hold its cells (GatherInfo `rho_first`,
+// `rho_end`: those virtual pixels read; a workgroup's test, uniform). Summing V_ρ's nine
+// coefficients in every cell the bounce light needs took the gather from 0.15–0.19 to
+// 0.26–0.34 ms at 1080p on the H100, and V_ρ's cells in a pass of their own (a few blocks,
+// too few workgroups to fill the GPU) 0.21–0.32 ms (docs/benchmarks.md, 2026-12-06). A block no
+// pixel reads gathers no VPL (its count through workgroup memory, so that the loop's barriers
+// stay in uniform control flow: an early return crashed lavapipe).
 @compute @workgroup_size(64)
 fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) t: u32) {
     let size = gather_info.size.xyz;
     let blocks = (size + 3u) / 4u;
     let block = vec3u(group.x % blocks.x, (group.x / blocks.x) % blocks.y, group.x / (blocks.x * blocks.y));
-    let id = block * 4u + vec3u(t % 4u, (t / 4u) % 4u, t / 16u);
-    let x = params.origin.xyz + (vec3f(id + gather_info.chunks_first.yzw) + 0.5) * cell_side();
-    // A block no pixel reads gathers no VPL (its count through workgroup memory, so that the
-    // loop's barriers stay in uniform control flow: an early return crashed lavapipe).
-    if (t == 0u) { shared_count = select(0u, vpl_count, block_read(block, blocks)); }
+    let first_cell = gather_info.chunks_first.yzw + block * 4u;
+    let cell = first_cell + vec3u(t % 4u, (t / 4u) % 4u, t / 16u);
+    let x = params.origin.xyz + (vec3f(cell) + 0.5) * cell_side();
+    let bounce = !bounce_propagated();
+    if (t == 0u) { shared_count = select(0u, vpl_count, !bounce || block_read(block, blocks)); }
     let count = workgroupUniformLoad(&shared_count);
     if (count == 0u) { return; }
-    let chunks = gather_info.chunks_first.x;
-    let per_chunk = (count + chunks - 1u) / chunks;
-    let begin = group.y * per_chunk;
-    let end = min(begin + per_chunk, count);
-    var c: CellSums;
-    for (var first = begin; first < end; first += TILE) {
-        if (first + t < end) { tile[t] = vpls[first + t]; }
+    let rho = !rho_propagated() && all(first_cell < gather_info.rho_end.xyz)
+        && all(first_cell + 4u > gather_info.rho_first.xyz);
+    let range = chunk_range(group.y, count);
+    var r: RhoSums;
+    var c: BounceSums;
+    for (var first = range.x; first < range.y; first += TILE) {
+        if (first + t < range.y) { tile[t] = vpls[first + t]; }
         workgroupBarrier();
-        let n = min(TILE, end - first);
+        let n = min(TILE, range.y - first);
         for (var i = 0u; i < n; i++) {
-            vpl_light(tile[i], x, &c);
+            let vpl = tile[i];
+            let at = vpl_at_cell(vpl, x);
+            let lights = u32(vpl.normal.w);
+            if (rho) { rho_light(at, lights, &r); }
+            if (bounce) { bounce_light(at, lights, &c); }
         }
         workgroupBarrier();
     }
-    if (any(id >= size)) { return; }
-    let at = (group.y * cells_gathered() + (id.z * size.y + id.y) * size.x + id.x) * partial_vectors();
-    partials[at] = c.rho_r;
-    partials[at + 1u] = c.rho_g;
-    partials[at + 2u] = c.rho_b;
-    if (bounce_propagated()) { return; }
-    partials[at + 3u] = c.delta_r;
-    partials[at + 4u] = c.delta_g;
-    partials[at + 5u] = c.delta_b;
-    partials[at + 6u] = c.mu_r;
-    partials[at + 7u] = c.mu_g;
-    partials[at + 8u] = c.mu_b;
+    if (any(cell - gather_info.chunks_first.yzw >= size)) { return; }
+    let at = (group.y * cells_gathered() + ((cell.z - gather_info.chunks_first.w) * size.y
+        + cell.y - gather_info.chunks_first.z) * size.x + cell.x - gather_info.chunks_first.y) * partial_vectors();
+    if (rho) {
+        partials[at] = r.r;
+        partials[at + 1u] = r.g;
+        partials[at + 2u] = r.b;
+        partials[at + 3u] = r.r2;
+        partials[at + 4u] = r.g2;
+        partials[at + 5u] = r.b2;
+        partials[at + 6u] = r.rgb8;
+    }
+    if (!bounce) { return; }
+    partials[at + 7u] = c.delta_r;
+    partials[at + 8u] = c.delta_g;
+    partials[at + 9u] = c.delta_b;
+    partials[at + 10u] = c.mu_r;
+    partials[at + 11u] = c.mu_g;
+    partials[at + 12u] = c.mu_b;
 }
 
 @compute @workgroup_size(4, 4, 4)
 fn gather_sum(@builtin(global_invocation_id) id: vec3u) {
     let size = gather_info.size.xyz;
-    if (any(id >= size) || !block_read(id / 4u, (size + 3u) / 4u)) { return; }
+    if (any(id >= size)) { return; }
+    let in_volume = id + gather_info.chunks_first.yzw;
+    // V_ρ's cells, and with the bounce light only the cells the pixels read (of either).
+    let read = bounce_propagated() || block_read(id / 4u, (size + 3u) / 4u);
+    let rho = read && all(in_volume >= gather_info.rho_first.xyz) && all(in_volume < gather_info.rho_end.xyz);
+    let bounce = read && !bounce_propagated();
+    if (!rho && !bounce) { return; }
     let h = cell_side();
-    let cell = cell_index(vec3i(id + gather_info.chunks_first.yzw));
+    let cell = cell_index(vec3i(in_volume));
     let in_box = (id.z * size.y + id.y) * size.x + id.x;
     let k = partial_vectors();
     for (var j = 0u; j < k; j++) {
-        // Volume v (V_ρ, V_Δ, V_μ as the accumulated volumes), channel ch.
-        let v = j / 3u;
-        let ch = j % 3u;
-        if (v == 0u && rho_propagated()) { continue; }
+        if (j < RHO_VECTORS && (rho_propagated() || !rho)) { continue; }
+        if (j >= RHO_VECTORS && !bounce) { continue; }
         var c = vec4f(0.0);
         for (var chunk = 0u; chunk < gather_info.chunks_first.x; chunk++) {
             c += partials[(chunk * cells_gathered() + in_box) * k + j];
         }
         c *= h * h;
+        if (j >= 3u && j < RHO_VECTORS) {
+            rho_band2[cell * 4u + j - 3u] = c;
+            continue;
+        }
+        // Volume v (V_ρ, V_Δ, V_μ as the accumulated volumes), channel ch.
+        let v = select(1u + (j - RHO_VECTORS) / 3u, 0u, j < 3u);
+        let ch = select((j - RHO_VECTORS) % 3u, j, j < 3u);
         if (v == 1u) {
             let word = ((SOURCE_DIRECT * 3u + ch) * cells() + cell) * 4u;
             let q = vec4i(injected[word], injected[word + 1u], injected[word + 2u], injected[word + 3u]);
