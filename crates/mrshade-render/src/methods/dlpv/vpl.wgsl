@@ -39,7 +39,7 @@ struct GatherInfo {
 
 // What a VPL lights: V_ρ, V_μ, V_Δ positively (a virtual surface's light, a virtual lamp's
 // on a real one) or negatively (a real surface's that a virtual one hides from the light).
-// V_ρ has bands 0–2 (vpl_gather.wgsl `CellSums`).
+// V_ρ has bands 0–2 (vpl_gather.wgsl `RhoSums`).
 const VPL_RHO: u32 = 1u;
 const VPL_MU: u32 = 2u;
 const VPL_DELTA: u32 = 4u;

@@ -2,9 +2,10 @@
 // `gather_info.w`² texels of a pair of maps, summed into VPLs by what they light: R_ρ's real
 // texels (those no virtual surface hides, as V_ρ's injection: V_ρ and V_μ) and its virtual
 // ones (V_ρ); with the bounce light gathered also the real texels a virtual surface hides
-// (V_μ, and taken from V_Δ) and the virtual surfaces that hide them (added to V_Δ). A virtual lamp's light is all change:
-// its real texels light V_ρ and V_Δ, never V_μ. With the photo's light (`photo_tiles`,
-// vpl_photo.wgsl) V_ρ and V_μ leave the texels the camera sees to the photo; V_Δ keeps them.
+// (V_μ, and taken from V_Δ) and the virtual surfaces that hide them (added to V_Δ). A virtual
+// lamp's light is all change: its real texels light V_ρ and V_Δ, never V_μ. With the photo's
+// light (`photo_tiles`, vpl_photo.wgsl) V_ρ and V_μ leave the texels the camera sees to the
+// photo; V_Δ keeps them.
 @group(0) @binding(0) var<uniform> params: DlpvParams;
 @group(0) @binding(1) var<storage, read> rsm: array<RsmTexel>;
 @group(0) @binding(2) var<storage, read> pairs: array<vec4u>;

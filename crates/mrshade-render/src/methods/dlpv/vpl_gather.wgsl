@@ -1,12 +1,11 @@
 // `gather` of the volumes gathered from VPLs (vpl.wgsl): V_ρ over the cells of the
 // virtual content's box and one cell around it (the only ones virtual pixels read), with the
-// bounce light gathered V_μ and V_Δ's indirect change over every cell
-// (real pixels read any), each VPL adding to the volumes it lights (VPL_*): a workgroup per
-// 4³ cells and chunk of the VPLs, which it reads 64 at a time into workgroup memory, each
-// invocation one cell's sum over the chunk (`gather`); then each cell's chunks summed
-// (`gather_sum`). One
-// invocation per cell over all VPLs ran a few waves on the whole GPU, each waiting on its
-// reads: 7 ms for cornell's 6 500 cells and 12 000 VPLs on an H100. A VPL's patch
+// bounce light gathered V_μ and V_Δ's indirect change over every cell (real pixels read any),
+// each VPL adding to the volumes it lights (VPL_*): a workgroup per 4³ cells and chunk of the
+// VPLs, which it reads 64 at a time into workgroup memory, each invocation one cell's sum over
+// the chunk (`gather`); then each cell's chunks summed (`gather_sum`). One invocation per cell
+// over all VPLs ran a few waves on the whole GPU, each waiting on its reads: 7 ms for
+// cornell's 6 500 cells and 12 000 VPLs on an H100. A VPL's patch
 // of area A, exitance M = Φ/A, lights the cell's centre x with the irradiance of a disk
 // facing it, E = Φ/π·cos_v / (d² + A/π) (exact on the disk's axis, no pole as d → 0), cos_v
 // its emission cosine toward the cell. (With the maps' VPLs alone, one bounce, the virtual
@@ -136,9 +135,9 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     let size = gather_info.size.xyz;
     let blocks = (size + 3u) / 4u;
     let block = vec3u(group.x % blocks.x, (group.x / blocks.x) % blocks.y, group.x / (blocks.x * blocks.y));
+    let id = block * 4u + vec3u(t % 4u, (t / 4u) % 4u, t / 16u);
     let first_cell = gather_info.chunks_first.yzw + block * 4u;
-    let cell = first_cell + vec3u(t % 4u, (t / 4u) % 4u, t / 16u);
-    let x = params.origin.xyz + (vec3f(cell) + 0.5) * cell_side();
+    let x = params.origin.xyz + (vec3f(id + gather_info.chunks_first.yzw) + 0.5) * cell_side();
     let bounce = !bounce_propagated();
     if (t == 0u) { shared_count = select(0u, vpl_count, !bounce || block_read(block, blocks)); }
     let count = workgroupUniformLoad(&shared_count);
@@ -161,9 +160,8 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
         }
         workgroupBarrier();
     }
-    if (any(cell - gather_info.chunks_first.yzw >= size)) { return; }
-    let at = (group.y * cells_gathered() + ((cell.z - gather_info.chunks_first.w) * size.y
-        + cell.y - gather_info.chunks_first.z) * size.x + cell.x - gather_info.chunks_first.y) * partial_vectors();
+    if (any(id >= size)) { return; }
+    let at = (group.y * cells_gathered() + (id.z * size.y + id.y) * size.x + id.x) * partial_vectors();
     if (rho) {
         partials[at] = r.r;
         partials[at + 1u] = r.g;
