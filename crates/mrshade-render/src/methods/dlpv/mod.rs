@@ -26,6 +26,7 @@
 //! direct change is then injected (and not propagated, `dlpv.direct_steps`).
 
 mod lights;
+mod propagation;
 mod shaders;
 mod vpl_gather;
 
@@ -44,6 +45,7 @@ use mrshade_core::settings::{DlpvSettings, DlpvSplat, DlpvTransport, RenderSetti
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
+pub use propagation::{propagate_layout, sum_updates};
 pub use shaders::*;
 use vpl_gather::{MapSet, VplGather, VplPhoto};
 use wgpu::util::DeviceExt;
@@ -133,44 +135,10 @@ pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DlpvMethod::new(inputs))
 }
 
-/// The layout of seeding and propagation (propagate.wgsl's group 0): the uniform, the
-/// fixed-point injection, scratch in and out, sums in and out.
-pub fn propagate_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let cs = wgpu::ShaderStages::COMPUTE;
-    bind::layout(
-        device,
-        "dlpv/propagate_layout",
-        &[
-            bind::uniform(0, cs),
-            bind::storage(1, cs),
-            bind::storage(2, cs),
-            bind::storage_rw(3, cs),
-            bind::storage(4, cs),
-            bind::storage_rw(5, cs),
-        ],
-    )
-}
-
 /// The volumes `settings` gathers from VPLs (vpl_gather.rs `GATHERED_*` bits; 0: none).
 fn gathered_volumes(settings: &DlpvSettings) -> u32 {
     let bit = |transport, bit| if transport == DlpvTransport::Gathered { bit } else { 0 };
     bit(settings.virtual_light, vpl_gather::GATHERED_RHO) | bit(settings.bounce_light, vpl_gather::GATHERED_BOUNCE)
-}
-
-/// Per dispatch of seeding (0) and propagation (1 …= `max_steps`), how many dispatches
-/// before it added to the sums (propagate.wgsl `adds_to_sums`: the seed, every even step, the
-/// last), and at `max_steps + 1` how many did in all: the sum buffer a dispatch reads is
-/// this count's parity.
-pub fn sum_updates(max_steps: u32) -> Vec<usize> {
-    let adds = |k: u32| k.is_multiple_of(2) || k == max_steps;
-    let mut count = 0;
-    let mut out = Vec::with_capacity(max_steps as usize + 2);
-    for k in 0..=max_steps {
-        out.push(count);
-        count += adds(k) as usize;
-    }
-    out.push(count);
-    out
 }
 
 /// Halves the maps until every set's texels fit one buffer binding.
