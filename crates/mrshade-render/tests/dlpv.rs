@@ -332,6 +332,60 @@ fn a_broad_light_in_the_probe_casts_the_soft_shadow_the_path_tracer_does() {
 }
 
 #[test]
+fn a_broad_light_in_the_probe_casts_a_real_objects_soft_shadow_on_a_virtual_floor_as_the_path_tracer_does() {
+    // The same broad patch of sky, now over a virtual floor with a real 8 cm cube floating 8 cm
+    // above it: the virtual floor's light across the cube's shadow, as a share of its light
+    // outside it, against the path tracer's. Each of the probe's lights stands for a patch of
+    // the probe, and a virtual surface sees them through their maps: soft by each light's
+    // angular radius (`dlpv.soft_virtual_probe_shadows`, the default), the shadow follows the
+    // path tracer's; hard, each light's edge is drawn sharp (the stripes across cornell's
+    // blocks). At z = 6–26 cm soft 0.26 / 0.04 / 0.12 / 0.54 / 0.73 / 0.85, hard 0.30 / 0.01 /
+    // 0.01 / 0.58 / 0.72 / 0.91, the path tracer 0.31 / 0.09 / 0.13 / 0.50 / 0.71 / 0.86.
+    let setup = |soft: bool| {
+        let mut s = Setup::top_down(64);
+        s.probe = Some([0.02, 0.02, 0.02]);
+        s.sun = Some([20.0; 3]);
+        s.sun_texels = 6;
+        s.gltf.patch_node(0, |n| n["translation"] = json!([0.0, 0.7, 0.0]));
+        s.plane(0.3, 0.0, 0.5, false);
+        s.cube([0.0, 0.12, 0.0], 0.04, true);
+        s.top_toml = "method = \"dlpv\"\n".into();
+        s.extra_toml += &format!(
+            "[dlpv]\nprobe_rsm_resolution = 256\nsoft_virtual_probe_shadows = {soft}\n[reference]\nspp = 256\n"
+        );
+        s
+    };
+    let soft = setup(true).render();
+    let hard = setup(false).render();
+    let caustics = mrshade_reference::CausticSettings { photons_per_light: Some(0) };
+    let reference = mrshade_reference::render_with(&soft.session, None, &caustics, &|_, _| {});
+    let w = soft.radiance.rv.width;
+    let at = |z: f32| {
+        let i = soft.floor_pixel(Vec3::new(0.0, 0.0, z));
+        (i as u32 % w, i as u32 / w)
+    };
+    let (ox, oy) = at(-0.2);
+    let ratio = |r: &common::Rendered, x, y| r.l_rv(x, y).y / r.l_rv(ox, oy).y;
+    let mut worst = [0.0f32; 2];
+    for z in [0.06, 0.10, 0.14, 0.18, 0.22, 0.26] {
+        let (x, y) = at(z);
+        let theirs = reference.l_rv.get(x, y)[1] / reference.l_rv.get(ox, oy)[1];
+        let ours = [ratio(&soft, x, y), ratio(&hard, x, y)];
+        eprintln!(
+            "z {z:.2}: L_rv / unshadowed soft {:.3}, hard {:.3}, the path tracer's {theirs:.3}",
+            ours[0], ours[1]
+        );
+        for (w, o) in worst.iter_mut().zip(ours) {
+            *w = w.max((o - theirs).abs());
+        }
+    }
+    let [soft, hard] = worst;
+    eprintln!("largest departure: soft {soft:.3}, hard {hard:.3}");
+    assert!(soft < 0.1, "the soft shadow on the virtual floor departs from the path tracer's by {soft:.3}");
+    assert!(hard > soft + 0.05, "the hard shadow is as soft: {hard:.3}");
+}
+
+#[test]
 fn the_model_of_the_photo_holds_the_real_scenes_shadow_of_the_probe() {
     // The same sun over a real floor, now with a real cube (10 cm) in its light and a small
     // virtual one beside it (for the volume and the maps): the floor in the real cube's sun

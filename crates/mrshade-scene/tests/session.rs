@@ -171,6 +171,14 @@ fn set_overrides_are_as_strict_as_the_file() {
     assert!(error(&path, &set(&["dlpv.photo_bounce=3"])).contains("expected a boolean"));
     assert!(error(&path, &set(&["dlpv.soft_probe_shadows=3"])).contains("expected a boolean"));
     assert!(Session::load(&path, &set(&["dlpv.soft_probe_shadows=true"])).unwrap().settings.dlpv.soft_probe_shadows);
+    assert!(error(&path, &set(&["dlpv.soft_virtual_probe_shadows=soft"])).contains("expected a boolean"));
+    assert!(
+        !Session::load(&path, &set(&["dlpv.soft_virtual_probe_shadows=false"]))
+            .unwrap()
+            .settings
+            .dlpv
+            .soft_virtual_probe_shadows
+    );
     assert!(error(&path, &set(&["dlpv.bounce_light=\"volume\""])).contains("expected `gathered` or `propagated`"));
     assert!(error(&path, &set(&["dlpv.gather_block=12"])).contains("`dlpv.gather_block` must be a power of two"));
     assert!(error(&path, &set(&["ibl.virtual=\"prt9\""])).contains("prt9"));

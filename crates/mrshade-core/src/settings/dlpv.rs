@@ -89,6 +89,14 @@ pub struct DlpvSettings {
     /// ms, past the method's 1.5 ms), for region FLIP desk-bunny 0.1094 → 0.1045,
     /// desk-spot-virtual 0.1021 → 0.0954, cornell and desk-spot-real alike (H100, 640×480).
     pub soft_probe_shadows: bool,
+    /// The probe's shadows on virtual surfaces soft by each light's angular radius (default),
+    /// both the real scene's and the virtual content's, or hard (one map texel per light).
+    /// Each of the probe's lights stands for a patch of the probe: hard, the edges of the
+    /// patches a wall lets through drew stripes across cornell's blocks (the probe lights
+    /// through the box's open side). Region FLIP on lavapipe, 640×480, hard → soft: cornell
+    /// 0.1547 → 0.1500, desk-bunny 0.1066 → 0.1044, desk-spot-real 0.1312 → 0.1127,
+    /// desk-spot-virtual 0.1132 → 0.1137 (docs/benchmarks.md, 2026-12-06).
+    pub soft_virtual_probe_shadows: bool,
     /// Where V_ρ, the virtual objects' light from the real scene, comes from: `gathered`
     /// (default) or `propagated` (the thesis's).
     pub virtual_light: DlpvTransport,
@@ -132,6 +140,7 @@ impl Default for DlpvSettings {
             gather_block: 16,
             photo_bounce: true,
             soft_probe_shadows: false,
+            soft_virtual_probe_shadows: true,
         }
     }
 }

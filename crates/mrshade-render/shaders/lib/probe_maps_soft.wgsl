@@ -37,6 +37,30 @@ fn probe_map_real_light(p: vec3f, n: vec3f, sharp_below: f32, soft: bool) -> Pro
     return out;
 }
 
+// probe_map_visibility with soft shadows (`sharp_below` = 0: every light), for virtual
+// surfaces: each light's real-only and virtual-only shadows soft by its angular radius
+// (probe_map_soft_occlusion), V_rv = V_r·(1 − occlusion by the virtual maps). Each light
+// stands for a patch of the probe, and hard, the patches a wall lets through drew their edges
+// across cornell's blocks as stripes. `covered` as there.
+fn probe_map_soft_visibility(p: vec3f, n: vec3f) -> ProbeMapVisibility {
+    var out = ProbeMapVisibility(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), true);
+    for (var i = 0u; i < probe_info.x; i++) {
+        let lit = probe_map_irradiance(i, n);
+        out.all_weight += lit.e;
+        if (all(lit.e == vec3f(0.0))) { continue; }
+        let k = probe_map_light(lit, p, n, 0.0);
+        let tan_radius = tan(bitcast<f32>(k.maps.z));
+        let per_metre = length(lit.lookup.s.xyz);
+        let v_r = 1.0 - probe_map_soft_occlusion(k.maps.x, k.st, k.height, k.bias, tan_radius, per_metre);
+        let v_v = 1.0 - probe_map_soft_occlusion(k.maps.y, k.st, k.height, k.bias, tan_radius, per_metre);
+        out.visible_r += k.w * v_r;
+        out.visible_rv += k.w * v_r * v_v;
+        out.weight += k.w;
+        out.covered = out.covered && probe_map_texel(k.maps.x, k.st) >= 0;
+    }
+    return out;
+}
+
 // Taps of the soft test below: a golden-angle spiral of PROBE_SOFT_TAPS points in the unit disk.
 const PROBE_SOFT_TAPS: u32 = 12u;
 

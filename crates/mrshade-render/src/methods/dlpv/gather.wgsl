@@ -9,7 +9,8 @@
 // shadow of the probe's broad lights is in the direct change, that of the others (up to
 // `dlpv.sharp_probe_shadows_deg`) read from their maps here, soft by each light's radius
 // with `dlpv.soft_probe_shadows`; virtual ones see the probe
-// through the maps of its directional lights (spec §2.3's suggested upgrade of ambient
+// through the maps of its directional lights, soft by each light's radius with
+// `dlpv.soft_virtual_probe_shadows` (spec §2.3's suggested upgrade of ambient
 // occlusion to directional occlusion): the visibility sums Σw·V over the lights,
 // w = E_k·⟨n, l_k⟩₊ per channel, V = 0 where a real or virtual surface lies toward the light
 // (the desk below, the object itself).
@@ -110,7 +111,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         // `dlpv.sharp_probe_shadows_deg`; the volume's direct change holds the rest,
         // inject.wgsl). As shares of the probe's light: raw sums of a bright probe would
         // overflow the f16 targets.
-        let probe = probe_map_real_light(s.position, s.normal, params.scale.y, params.gathered.z == 1u);
+        let probe = probe_map_real_light(s.position, s.normal, params.scale.y, (params.gathered.z & SOFT_REAL) != 0u);
         let total = probe.all_weight;
         let env_r = select(vec3f(1.0), probe.visible_r / total, total > vec3f(0.0));
         let taken = select(vec3f(0.0), probe.blocked / total, total > vec3f(0.0));
@@ -118,7 +119,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let light = diffuse * max(volume_irradiance(VOLUME_RHO, s.position, s.normal), vec3f(0.0));
-    let v = probe_map_visibility(s.position, s.normal, 0.0);
+    var v: ProbeMapVisibility;
+    if ((params.gathered.z & SOFT_VIRTUAL) != 0u) {
+        v = probe_map_soft_visibility(s.position, s.normal);
+    } else {
+        v = probe_map_visibility(s.position, s.normal, 0.0);
+    }
     if (all(v.weight == vec3f(0.0))) {
         store_indirect(pixel, light, vec3f(0.0), vec3f(1.0), vec3f(1.0), vec3f(1.0));
         return;

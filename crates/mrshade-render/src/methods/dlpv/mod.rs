@@ -65,8 +65,9 @@ pub struct DlpvParams {
     /// Propagation steps per source.
     pub steps: UVec4,
     /// x: 1 when V_ρ is gathered from VPLs (the propagation writes the accumulated volumes
-    /// from the second on); y: 1 when the photo's light is in it (`dlpv.photo_bounce`); z: 1
-    /// when the probe's shadows on real surfaces are soft (`dlpv.soft_probe_shadows`).
+    /// from the second on); y: 1 when the photo's light is in it (`dlpv.photo_bounce`); z: bit
+    /// 0 when the probe's shadows on real surfaces are soft (`dlpv.soft_probe_shadows`), bit 1
+    /// on virtual ones (`dlpv.soft_virtual_probe_shadows`; volume.wgsl `SOFT_*`).
     pub gathered: UVec4,
 }
 
@@ -160,8 +161,8 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
             rsm::bytes(2 * d.probe_lights as u64, d.probe_rsm_resolution),
         ),
         (
-            "dlpv probe maps' nearest highest surfaces (with dlpv.soft_probe_shadows: 2 × 4 bytes a texel)",
-            if d.soft_probe_shadows {
+            "dlpv probe maps' nearest highest surfaces (with soft probe shadows: 2 × 4 bytes a texel)",
+            if d.soft_probe_shadows || d.soft_virtual_probe_shadows {
                 2 * 4 * 2 * d.probe_lights as u64 * (d.probe_rsm_resolution as u64).pow(2)
             } else {
                 0
@@ -253,7 +254,7 @@ impl DlpvMethod {
             gathered: UVec4::new(
                 rho_gathered as u32,
                 (gathered != 0 && settings.photo_bounce) as u32,
-                settings.soft_probe_shadows as u32,
+                settings.soft_probe_shadows as u32 | (settings.soft_virtual_probe_shadows as u32) << 1,
                 bounce_gathered as u32,
             ),
         };
@@ -345,7 +346,7 @@ impl DlpvMethod {
             cube,
             scene_box,
             shadows,
-            settings.soft_probe_shadows,
+            settings.soft_probe_shadows || settings.soft_virtual_probe_shadows,
         );
         if let Some((rsm, pairs_buffer, pairs)) = &scene_maps {
             let buffers = [&scene.lights, &rsm.texels, pairs_buffer];

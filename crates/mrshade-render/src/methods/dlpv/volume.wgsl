@@ -17,11 +17,15 @@ struct DlpvParams {
     steps: vec4u,
     // x: 1 when V_ρ is gathered from VPLs (vpl.wgsl): its source is neither injected nor
     // propagated, and the propagation writes the accumulated volumes from the second on;
-    // y: 1 when the photo's light is in the gathered volumes (vpl_photo.wgsl); z: 1 when the
-    // probe's shadows on real surfaces are soft; w: 1 when V_μ and V_Δ's indirect change are
+    // y: 1 when the photo's light is in the gathered volumes (vpl_photo.wgsl); z: which of the
+    // probe's shadows are soft (SOFT_REAL, SOFT_VIRTUAL); w: 1 when V_μ and V_Δ's indirect change are
     // gathered (`dlpv.bounce_light`): their sources are neither injected nor propagated
     gathered: vec4u,
 }
+
+// `gathered.z`: the probe's shadows soft on real surfaces, on virtual ones.
+const SOFT_REAL: u32 = 1u;
+const SOFT_VIRTUAL: u32 = 2u;
 
 fn rho_propagated() -> bool { return params.gathered.x == 0u; }
 fn bounce_propagated() -> bool { return params.gathered.w == 0u; }
