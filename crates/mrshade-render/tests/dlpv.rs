@@ -337,8 +337,8 @@ fn a_broad_light_in_the_probe_casts_a_real_objects_soft_shadow_on_a_virtual_floo
     // above it: the virtual floor's light across the cube's shadow, as a share of its light
     // outside it, against the path tracer's. Each of the probe's lights stands for a patch of
     // the probe, and a virtual surface sees them through their maps: soft by each light's
-    // angular radius (`dlpv.soft_virtual_probe_shadows`, the default), the shadow follows the
-    // path tracer's; hard, each light's edge is drawn sharp (the stripes across cornell's
+    // angular radius (`dlpv.soft_virtual_probe_shadows`), the shadow follows the
+    // path tracer's; hard (the default), each light's edge is drawn sharp (the stripes across cornell's
     // blocks). At z = 6–26 cm soft 0.26 / 0.04 / 0.12 / 0.54 / 0.73 / 0.85, hard 0.30 / 0.01 /
     // 0.01 / 0.58 / 0.72 / 0.91, the path tracer 0.31 / 0.09 / 0.13 / 0.50 / 0.71 / 0.86.
     let setup = |soft: bool| {

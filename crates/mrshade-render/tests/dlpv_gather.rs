@@ -1,7 +1,7 @@
 //! Known answers of the `dlpv` method's volumes gathered from VPLs (Franke §2.12, vpl.wgsl):
 //! V_ρ at a cell is the sum of a lit floor's light, of the photo's light of the floor the
 //! camera sees and of a lit virtual face's; V_Δ's change on a floor is a lit face's light less
-//! that of the floor it hides.
+//! that of the floor it hides, and with `dlpv.bounce_visibility` less the light it blocks.
 
 mod common;
 
@@ -259,4 +259,42 @@ fn the_gathered_change_on_the_floor_is_the_lit_face_less_the_floor_it_hides() {
     assert!(expected > 0.02, "the known answer lights the cell: {expected}");
     assert!(rel(gathered, expected) < 0.15, "gathered {gathered} against {expected}");
     assert!(rel(propagated, expected) > 0.5, "propagated {propagated}");
+}
+
+#[test]
+fn the_cube_takes_from_the_floor_behind_it_the_light_it_blocks() {
+    // The sun and the cube again, the floor's cell 11 cm beyond the cube's unlit face (x = 15
+    // cm, 3 cm past its shadow): the change there is the light of the floor the cube hides from the sun
+    // (under it and in its shadow, as above) and, with `dlpv.bounce_visibility`,
+    // that of the lit floor before the cube whose path to the cell the cube blocks, summed by
+    // the CPU over 2 mm patches. The cube's own light (its faces lit by the floor, as VPLs of
+    // their cells) gives a little back (with it −0.0116, the CPU −0.0140; without it −0.0110,
+    // the CPU's hidden floor alone −0.0124).
+    let at = [15, 6, 8];
+    let up_facing = |c: Vec4, h: f32| {
+        let (y0, y1) = (0.282_094_8, 0.488_602_5);
+        (std::f32::consts::PI * y0 * c.x - 2.0 * std::f32::consts::PI / 3.0 * y1 * c.y) / (h * h)
+    };
+    let (c, h, x) = volume_cell(&sun_and_cube("bounce_visibility = true\n"), at, VOLUME_DELTA);
+    let seen = up_facing(c, h);
+    let (c, h, _) = volume_cell(&sun_and_cube(""), at, VOLUME_DELTA);
+    let unseen = up_facing(c, h);
+    let cube = (Vec3::new(0.0, 0.04, 0.0), 0.04);
+    let hidden_region = |q: Vec3| q.x > -0.04 && q.x < 0.12 && q.z.abs() < 0.04;
+    let floor = rectangle(Vec3::new(-0.3, 0.0, -0.3), Vec3::X * 0.6, Vec3::Z * 0.6, Vec3::Y, -SUN_FLOOR);
+    let hidden: Vec<_> = floor.iter().copied().filter(|p| hidden_region(p.0)).collect();
+    let blocked: Vec<_> = floor
+        .iter()
+        .copied()
+        .filter(|p| !hidden_region(p.0) && common::segment_hits_box(p.0, x, cube.0, cube.1))
+        .collect();
+    let hidden_light = patches_light_at(x, &hidden);
+    let expected = hidden_light + patches_light_at(x, &blocked);
+    eprintln!(
+        "cell at {x}: the change {seen:.4} (without visibility {unseen:.4}); the CPU's: hidden floor {hidden_light:.4}, with the blocked floor {expected:.4}"
+    );
+    assert!(expected < hidden_light, "the known answer takes the blocked light: {expected} against {hidden_light}");
+    assert!(rel(seen, expected) < 0.25, "with visibility {seen} against {expected}");
+    assert!(rel(unseen, hidden_light) < 0.25, "without {unseen} against {hidden_light}");
+    assert!(seen < unseen, "the visibility takes no light: {seen} against {unseen}");
 }

@@ -89,13 +89,15 @@ pub struct DlpvSettings {
     /// ms, past the method's 1.5 ms), for region FLIP desk-bunny 0.1094 → 0.1045,
     /// desk-spot-virtual 0.1021 → 0.0954, cornell and desk-spot-real alike (H100, 640×480).
     pub soft_probe_shadows: bool,
-    /// The probe's shadows on virtual surfaces soft by each light's angular radius (default),
-    /// both the real scene's and the virtual content's, or hard (one map texel per light).
+    /// The probe's shadows on virtual surfaces soft by each light's angular radius, both the
+    /// real scene's and the virtual content's, or, by default, hard (one map texel per light).
     /// Each of the probe's lights stands for a patch of the probe: hard, the edges of the
-    /// patches a wall lets through drew stripes across cornell's blocks (the probe lights
+    /// patches a wall lets through draw stripes across cornell's blocks (the probe lights
     /// through the box's open side). Region FLIP on lavapipe, 640×480, hard → soft: cornell
     /// 0.1547 → 0.1500, desk-bunny 0.1066 → 0.1044, desk-spot-real 0.1312 → 0.1127,
-    /// desk-spot-virtual 0.1132 → 0.1137 (docs/benchmarks.md, 2026-12-06).
+    /// desk-spot-virtual 0.1132 → 0.1137; it costs 0.12–0.41 ms more per moving 1080p frame
+    /// on an H100 (the merge; cornell 1.35 → 1.79 ms, past the method's 1.5 ms): an option for
+    /// stills and comparisons (docs/benchmarks.md, 2026-12-06).
     pub soft_virtual_probe_shadows: bool,
     /// Where V_ρ, the virtual objects' light from the real scene, comes from: `gathered`
     /// (default) or `propagated` (the thesis's).
@@ -110,6 +112,19 @@ pub struct DlpvSettings {
     /// floor a block hides; and the light of the blocks' lit tops never reached the back wall
     /// (docs/benchmarks.md, 2026-12-06).
     pub bounce_light: DlpvTransport,
+    /// With the bounce light gathered: the virtual content stands in its paths. The
+    /// virtual surfaces the maps see mark the cells they lie in with their plane; a VPL's
+    /// light to a cell that crosses such a plane on the way leaves V_Δ (the real bounce light
+    /// the content blocks: the tall block's shadow of cornell's red wall on the back wall),
+    /// and each marked cell sends the light its surface takes from V_ρ on into V_Δ (the
+    /// content's own bounce light, without which the blocked light alone left its contact
+    /// shadows twice too dark). Region FLIP on lavapipe, 640×480, with soft virtual probe
+    /// shadows, off → on: cornell 0.1500 → 0.1362, desk-bunny 0.1044 → 0.1055, desk-spot-real
+    /// 0.1127 → 0.1103, desk-spot-virtual 0.1137 → 0.1113. Off by default: the paths' test
+    /// costs the gather 0.5–0.9 ms more per moving 1080p frame on an H100 (cornell 1.35 →
+    /// 2.30 ms; vpl_gather.wgsl `VISIBILITY_PART`), past the method's 1.5 ms: an option for
+    /// stills and comparisons (docs/benchmarks.md, 2026-12-06).
+    pub bounce_visibility: bool,
     /// Texels per side of the blocks of a map summed into one VPL of the gathered V_ρ (a
     /// power of two, 8–256; at most a map's side). Default 16: 1024 VPLs per 512² map, 16 per
     /// probe light's 64². With the photo's light the maps light only what the camera does not
@@ -140,7 +155,8 @@ impl Default for DlpvSettings {
             gather_block: 16,
             photo_bounce: true,
             soft_probe_shadows: false,
-            soft_virtual_probe_shadows: true,
+            soft_virtual_probe_shadows: false,
+            bounce_visibility: false,
         }
     }
 }

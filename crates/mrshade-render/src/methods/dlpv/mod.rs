@@ -23,7 +23,11 @@
 //! VPLs, signed for the change (+ a virtual surface's light, − that of the real surface it
 //! hides), summed at every cell a pixel reads; propagated, a floor lit itself through its own
 //! cells and a block's lit top never reached the wall behind it. Only the probe's broad lights'
-//! direct change is then injected (and not propagated, `dlpv.direct_steps`).
+//! direct change is then injected (and not propagated, `dlpv.direct_steps`). The gathered
+//! VPLs see no surface on their way (the propagation's geometry volume is gone with it); with
+//! `dlpv.bounce_visibility` (an option: it costs the gather 0.5–0.9 ms) the virtual content
+//! blocks the bounce light's paths through the planes of the virtual surfaces in its cells,
+//! and those cells send their own light on (vpl_aggregate.wgsl `cell_vpls`).
 
 mod lights;
 mod propagation;
@@ -129,6 +133,8 @@ pub struct DlpvMethod {
     stale: bool,
     /// The camera or the photo changed: V_ρ takes the photo's light again.
     stale_photo: bool,
+    /// Gather once more next frame (with `dlpv.bounce_visibility`, after the maps were drawn).
+    gather_again: bool,
 }
 
 /// Builds the method (the registry's `build`).
@@ -255,7 +261,7 @@ impl DlpvMethod {
                 rho_gathered as u32,
                 (gathered != 0 && settings.photo_bounce) as u32,
                 settings.soft_probe_shadows as u32 | (settings.soft_virtual_probe_shadows as u32) << 1,
-                bounce_gathered as u32,
+                bounce_gathered as u32 | ((bounce_gathered && settings.bounce_visibility) as u32) << 1,
             ),
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
@@ -483,6 +489,7 @@ impl DlpvMethod {
             indirect,
             stale: true,
             stale_photo: false,
+            gather_again: false,
         }
     }
 
@@ -523,13 +530,16 @@ impl LightTransport for DlpvMethod {
         // The photo's light in the gathered volumes follows the camera and the photo, and the
         // cells the pixels read (the gathered bounce light) the camera.
         self.stale_photo |= (change.camera_moved || change.photo_changed)
-            && (self.params.gathered.y == 1 || self.params.gathered.w == 1);
+            && (self.params.gathered.y == 1 || self.params.gathered.w != 0);
     }
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
-        let stale_photo = std::mem::take(&mut self.stale_photo);
-        // A new photo or camera alone: the maps are as they were, V_ρ is gathered again.
-        if let (false, true, Some(gather)) = (self.stale, stale_photo, &self.vpl_gather) {
+        // A new photo or camera alone: the maps are as they were, V_ρ is gathered again; so
+        // once after the maps were drawn anew, with the bounce's visibility: the virtual
+        // surfaces' VPLs (vpl_aggregate.wgsl `cell_vpls`) read the last gather's V_ρ, zero
+        // before a still's first frame.
+        let again = std::mem::take(&mut self.stale_photo) || std::mem::take(&mut self.gather_again);
+        if let (false, true, Some(gather)) = (self.stale, again, &self.vpl_gather) {
             gather.record(rec);
         }
         if std::mem::take(&mut self.stale) {
@@ -537,6 +547,11 @@ impl LightTransport for DlpvMethod {
                 rsm.record_maps(rec, rasterizer, false);
             }
             self.probe.record(rec, rasterizer);
+            // The VPLs before V_ρ is cleared below (their virtual surfaces read it).
+            if let Some(gather) = &self.vpl_gather {
+                gather.record_vpls(rec);
+                self.gather_again = self.params.gathered.w & 2 != 0;
+            }
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);
             let res = self.params.info.x;
@@ -563,7 +578,7 @@ impl LightTransport for DlpvMethod {
                     rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
                     rec.encoder.clear_buffer(&self.rho_band2, 0, None);
                 }
-                gather.record(rec);
+                gather.record_gather_pass(rec);
             }
         }
         rec.compute(Self::LABEL, |pass| self.gather.record(pass));

@@ -35,6 +35,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/probe_maps.wgsl",
     "../../../shaders/lib/probe_maps_soft.wgsl",
     "volume.wgsl",
+    "volume_read.wgsl",
     "gather.wgsl",
 );
 
@@ -44,9 +45,11 @@ pub const VPL_AGGREGATE_SHADER: &str = wgsl!(
     "../../../shaders/lib/gbuffer.wgsl",
     "../../../shaders/lib/lights.wgsl",
     "../../../shaders/lib/rsm_texel.wgsl",
+    "../../../shaders/lib/sh.wgsl",
     "volume.wgsl",
     "rsm_pair.wgsl",
     "vpl.wgsl",
+    "volume_read.wgsl",
     "vpl_aggregate.wgsl",
     "vpl_photo.wgsl",
 );

@@ -18,8 +18,10 @@ struct DlpvParams {
     // x: 1 when V_ρ is gathered from VPLs (vpl.wgsl): its source is neither injected nor
     // propagated, and the propagation writes the accumulated volumes from the second on;
     // y: 1 when the photo's light is in the gathered volumes (vpl_photo.wgsl); z: which of the
-    // probe's shadows are soft (SOFT_REAL, SOFT_VIRTUAL); w: 1 when V_μ and V_Δ's indirect change are
-    // gathered (`dlpv.bounce_light`): their sources are neither injected nor propagated
+    // probe's shadows are soft (SOFT_REAL, SOFT_VIRTUAL); w: bit 0 when V_μ and V_Δ's
+    // indirect change are gathered (`dlpv.bounce_light`): their sources are neither injected
+    // nor propagated; bit 1 when the virtual content stands in the gathered bounce light's
+    // paths (`dlpv.bounce_visibility`, vpl_gather.wgsl `blocked`)
     gathered: vec4u,
 }
 
@@ -28,7 +30,8 @@ const SOFT_REAL: u32 = 1u;
 const SOFT_VIRTUAL: u32 = 2u;
 
 fn rho_propagated() -> bool { return params.gathered.x == 0u; }
-fn bounce_propagated() -> bool { return params.gathered.w == 0u; }
+fn bounce_propagated() -> bool { return (params.gathered.w & 1u) == 0u; }
+fn bounce_visible() -> bool { return (params.gathered.w & 2u) != 0u; }
 
 // `info.w`: a VPL goes into the cell it lies in, or trilinearly into the eight around it.
 const SPLAT_CELL: u32 = 0u;

@@ -16,6 +16,55 @@
 @group(0) @binding(5) var<uniform> gather_info: vec4u;
 @group(0) @binding(6) var<storage, read_write> vpl_count: atomic<u32>;
 @group(0) @binding(7) var<uniform> cells_gathered: GatherInfo;
+// Per cell two vec4f, cleared before the pass: the plane of a virtual surface the maps see in
+// it (unit normal, ⟨n, p⟩; zero where none) and its diffuse albedo (`bounce_visible`).
+@group(0) @binding(8) var<storage, read_write> planes: array<vec4f>;
+// The accumulated volumes and V_ρ's band 2 as the last gather left them (volume_read.wgsl),
+// for the light the virtual surfaces send on (`cell_vpls`).
+@group(0) @binding(9) var<storage, read> volumes: array<vec4f>;
+@group(0) @binding(10) var<storage, read> rho_band2: array<vec4f>;
+
+// Marks the cell of virtual surface point `p` (normal `n`, diffuse albedo `albedo`) with its
+// plane. Texels of one cell from several maps or faces race; any one's plane will do: the
+// test that reads it (vpl_gather.wgsl `blocked`) asks only whether a path crosses a surface
+// there, and a cell of a face holds that face's plane whichever texel wrote it.
+fn mark_plane(p: vec3f, n: vec3f, albedo: vec3f) {
+    let c = vec3i(floor(cell_coords(p)));
+    if (!cell_inside(c)) { return; }
+    let i = cell_index(c);
+    planes[2u * i] = vec4f(n, dot(n, p));
+    planes[2u * i + 1u] = vec4f(albedo, 1.0);
+}
+
+// One invocation per cell: a cell that holds a virtual surface's plane appends a VPL of the
+// change (V_Δ) with the light that surface takes from V_ρ, E·albedo over the cell's share of
+// the plane (h² / the normal's largest component), at the plane's point nearest the cell's
+// centre. V_ρ is the last gather's (a frame late while the content moves; `VplGather`
+// gathers once more after a still's first frame). The maps' VPLs of the virtual surfaces
+// (`hiding`) carry their direct light; these their indirect light, which the blocked bounce
+// light needs beside it: blocked alone, cornell's contact shadows were twice too dark.
+@compute @workgroup_size(64)
+fn cell_vpls(@builtin(global_invocation_id) id: vec3u) {
+    let res = params.info.x;
+    let i = id.x;
+    if (i >= cells()) { return; }
+    let plane = planes[2u * i];
+    if (dot(plane.xyz, plane.xyz) < 0.25) { return; }
+    let c = vec3f(f32(i % res), f32((i / res) % res), f32(i / (res * res)));
+    let h = cell_side();
+    let centre = params.origin.xyz + (c + 0.5) * h;
+    let n = normalize(plane.xyz);
+    let p = centre - (dot(n, centre) - plane.w) * n;
+    let e = max(volume_irradiance(VOLUME_RHO, p, n), vec3f(0.0));
+    let area = h * h / max(max(abs(n.x), abs(n.y)), abs(n.z));
+    let flux = planes[2u * i + 1u].rgb * e * area;
+    if (all(flux == vec3f(0.0))) { return; }
+    var vpl: GatherVpl;
+    vpl.position = vec4f(p, area);
+    vpl.normal = vec4f(n, f32(VPL_DELTA));
+    vpl.flux = vec4f(flux, 0.0);
+    vpls[atomicAdd(&vpl_count, 1u)] = vpl;
+}
 
 // Appends the VPL of `sum`, lighting the volumes of `lights` (VPL_* bits), if it holds any
 // light and the cells gathered lie (partly) in front of it (thread 0 of the workgroup, after
@@ -102,6 +151,9 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             let real = rsm[(pair.x * res + y) * res + x];
             let virt = rsm[(pair.y * res + y) * res + x];
             let real_hit = real.position.w > 0.5;
+            if (bounce_visible() && virt.position.w > 0.5) {
+                mark_plane(virt.position.xyz, virt.normal.xyz, virt.albedo.rgb * (1.0 - virt.albedo.w));
+            }
             if (virtual_nearer(light, real, virt)) {
                 hiding = plus(hiding, texel_sum(virt));
                 if (real_hit && real_light) {

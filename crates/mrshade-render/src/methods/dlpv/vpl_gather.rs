@@ -107,14 +107,16 @@ const PHOTO_TILE_ROWS: u32 = 40;
 
 /// GPU bytes of the gathered volumes (`gathered`: `GATHERED_*` bits): their VPLs
 /// (`pairs_texels`: the maps' pairs × texels per map, per set, up to four VPLs per block;
-/// the photo's tiles for images up to 4:1) and the gather's partial sums.
+/// the photo's tiles for images up to 4:1; with the bounce light one per cell and the
+/// cells' planes, `dlpv.bounce_visibility`) and the gather's partial sums.
 pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64, gathered: u32) -> u64 {
     let vpl = std::mem::size_of::<GatherVpl>() as u64;
     let map_vpls: u64 = pairs_texels.iter().map(|&(pairs, texels)| pairs * (texels / (block * block)).max(1)).sum();
     let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK } else { 1 };
     let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
     let partial = partial_cell_bytes(gathered);
-    (map_vpls * per_block + photo_vpls) * vpl + chunks(cells, partial) as u64 * cells * partial
+    let cell_bytes = if gathered & GATHERED_BOUNCE != 0 { cells * (vpl + 32) } else { 0 };
+    (map_vpls * per_block + photo_vpls) * vpl + cell_bytes + chunks(cells, partial) as u64 * cells * partial
 }
 
 /// VPLs a block of a map appends at most with the bounce light gathered (vpl_aggregate.wgsl):
@@ -146,6 +148,12 @@ pub(super) struct MapSet<'a> {
 /// The two passes and the VPLs between them.
 pub(super) struct VplGather {
     aggregate: wgpu::ComputePipeline,
+    /// The virtual surfaces' cells as VPLs of their light (with `dlpv.bounce_visibility`).
+    cell_vpls: Option<wgpu::ComputePipeline>,
+    /// Their planes (vpl_aggregate.wgsl `planes`).
+    planes: wgpu::Buffer,
+    /// Cells in the volume.
+    cells: u32,
     photo_tiles: wgpu::ComputePipeline,
     /// Flags the blocks of cells the pixels read (with the bounce light gathered), and its
     /// group 0.
@@ -209,8 +217,10 @@ impl VplGather {
         let tiles = [photo.internal_size.0.div_ceil(tile), photo.internal_size.1.div_ceil(tile)];
         let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK as u32 } else { 1 };
         let map_vpls: u32 = counts.iter().sum::<u32>() * per_block;
-        let total = map_vpls + tiles[0] * tiles[1];
         let cells = (values.info.x as u64).pow(3);
+        // With the bounce's visibility, a VPL per cell of a virtual surface at most (`cell_vpls`).
+        let cell_vpls = if values.gathered.w & 2 != 0 { cells as u32 } else { 0 };
+        let total = map_vpls + tiles[0] * tiles[1] + cell_vpls;
         let partial = partial_cell_bytes(gathered);
         let chunks = chunks(cells, partial);
         let info = GatherInfo::new(chunks, virtual_box, values, gathered);
@@ -232,6 +242,14 @@ impl VplGather {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let visible = values.gathered.w & 2 != 0;
+        // Two vec4f a cell (vpl_aggregate.wgsl `planes`), with the bounce's visibility.
+        let planes = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/virtual_planes"),
+            size: if visible { cells * 32 } else { 32 },
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let vpls = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/vpl_vpls"),
             size: (total.max(1) as usize * std::mem::size_of::<GatherVpl>()) as u64,
@@ -250,6 +268,9 @@ impl VplGather {
                 bind::uniform(5, cs),
                 bind::storage_rw(6, cs),
                 bind::uniform(7, cs),
+                bind::storage_rw(8, cs),
+                bind::storage(9, cs),
+                bind::storage(10, cs),
             ],
         );
         // The frame, the G-buffer's depth, normals and flags, the photo (vpl_photo.wgsl).
@@ -284,6 +305,8 @@ impl VplGather {
             compute_pipeline_entry(device, "dlpv/vpl_aggregate", VPL_AGGREGATE_SHADER, "aggregate", &layouts);
         let photo_tiles =
             compute_pipeline_entry(device, "dlpv/vpl_photo_tiles", VPL_AGGREGATE_SHADER, "photo_tiles", &layouts);
+        let cell_vpls = visible
+            .then(|| compute_pipeline_entry(device, "dlpv/vpl_cell_vpls", VPL_AGGREGATE_SHADER, "cell_vpls", &layouts));
         let mark_cells = (gathered & GATHERED_BOUNCE != 0).then(|| {
             let layout =
                 bind::layout(device, "dlpv/mark_cells_layout", &[bind::uniform(0, cs), bind::storage_rw(1, cs)]);
@@ -323,6 +346,9 @@ impl VplGather {
                     info.as_entire_binding(),
                     count.as_entire_binding(),
                     gather_info.as_entire_binding(),
+                    planes.as_entire_binding(),
+                    volumes.as_entire_binding(),
+                    rho_band2.as_entire_binding(),
                 ],
             )
         };
@@ -358,6 +384,7 @@ impl VplGather {
                 bind::storage(6, cs),
                 bind::storage(7, cs),
                 bind::storage_rw(8, cs),
+                bind::storage(9, cs),
             ],
         );
         let gather = compute_pipeline_entry(device, "dlpv/vpl_gather", VPL_GATHER_SHADER, "gather", &[&gather_layout]);
@@ -384,10 +411,14 @@ impl VplGather {
                 injected.as_entire_binding(),
                 blocks_read.as_entire_binding(),
                 rho_band2.as_entire_binding(),
+                planes.as_entire_binding(),
             ],
         );
         Self {
             aggregate,
+            cell_vpls,
+            planes,
+            cells: cells as u32,
             photo_tiles,
             mark_cells,
             blocks_read,
@@ -412,12 +443,23 @@ impl VplGather {
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
 
-    /// Sums the maps into VPLs (with the bounce light: first flags the cells the pixels read),
-    /// then writes the gathered volumes (after the propagation, which leaves them).
+    /// Sums the maps into VPLs (`record_vpls`), then writes the gathered volumes
+    /// (`record_gather`).
     pub fn record(&self, rec: &mut Recorder) {
+        self.record_vpls(rec);
+        rec.compute(Self::LABEL, |pass| self.record_gather(pass));
+    }
+
+    /// Sums the maps into VPLs (with the bounce light: first flags the cells the pixels read;
+    /// with its visibility, last the virtual surfaces' cells, which read the V_ρ the last
+    /// gather left: before the volumes are cleared).
+    pub fn record_vpls(&self, rec: &mut Recorder) {
         rec.encoder.clear_buffer(&self.count, 0, None);
         if self.mark_cells.is_some() {
             rec.encoder.clear_buffer(&self.blocks_read, 0, None);
+        }
+        if self.cell_vpls.is_some() {
+            rec.encoder.clear_buffer(&self.planes, 0, None);
         }
         rec.compute(Self::VPLS_LABEL, |pass| {
             pass.set_bind_group(1, &self.camera_group, &[]);
@@ -431,7 +473,16 @@ impl VplGather {
                 pass.set_bind_group(0, &set.group, &[]);
                 pass.dispatch_workgroups(set.blocks[0], set.blocks[1], set.pairs.max(1));
             }
+            if let (Some(pipeline), Some(set)) = (&self.cell_vpls, self.sets.first()) {
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &set.group, &[]);
+                pass.dispatch_workgroups(self.cells.div_ceil(64), 1, 1);
+            }
         });
+    }
+
+    /// Writes the gathered volumes from the VPLs (after the propagation, which leaves them).
+    pub fn record_gather_pass(&self, rec: &mut Recorder) {
         rec.compute(Self::LABEL, |pass| self.record_gather(pass));
     }
 

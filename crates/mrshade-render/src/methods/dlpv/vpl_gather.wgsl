@@ -29,10 +29,55 @@
 @group(0) @binding(7) var<storage, read> blocks_read: array<u32>;
 // V_ρ's band 2 per cell (volume.wgsl `rho_band2`), which `gather_sum` writes with V_ρ.
 @group(0) @binding(8) var<storage, read_write> rho_band2: array<vec4f>;
+// Per cell the plane of a virtual surface in it and its albedo (vpl_aggregate.wgsl
+// `mark_plane`), with `bounce_visible`.
+@group(0) @binding(9) var<storage, read> planes: array<vec4f>;
+
+// Whether the path from `a` (a VPL) to `x` (a cell's centre) crosses a virtual surface: at
+// every half cell along it inside V_ρ's box (where the virtual surfaces lie), whether the
+// points half a cell before and after lie on either side of the plane of the cell there
+// (`planes`). A path that only grazes a surface's cell (along a face, over a contact) crosses
+// no plane: marking the cells alone blocked it, and a floor beside a block lost its light.
+// The first and the last cell and a half are left out: a VPL on a virtual surface leaves its
+// own plane, and the cells the merge reads beside a face lie partly behind it.
+fn blocked(a: vec3f, x: vec3f) -> bool {
+    let ca = cell_coords(a);
+    let d = cell_coords(x) - ca;
+    let len = length(d);
+    if (len < 3.0) { return false; }
+    let dir = d / len;
+    let inv = 1.0 / select(dir, vec3f(1e-20), abs(dir) < vec3f(1e-20));
+    let t0 = (vec3f(gather_info.rho_first.xyz) - ca) * inv;
+    let t1 = (vec3f(gather_info.rho_end.xyz) - ca) * inv;
+    let t_in = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z));
+    let t_out = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
+    let end = min(t_out, len - 1.5);
+    let h = cell_side();
+    for (var t = max(t_in, 1.5); t <= end; t += 0.5) {
+        let c = vec3i(floor(ca + t * dir));
+        if (!cell_inside(c)) { continue; }
+        let plane = planes[2u * cell_index(c)];
+        if (dot(plane.xyz, plane.xyz) < 0.25) { continue; }
+        let before = params.origin.xyz + (ca + (t - 0.5) * dir) * h;
+        let after = params.origin.xyz + (ca + (t + 0.5) * dir) * h;
+        if ((dot(plane.xyz, before) - plane.w) * (dot(plane.xyz, after) - plane.w) < 0.0) { return true; }
+    }
+    return false;
+}
 
 const TILE: u32 = 64u;
 var<workgroup> tile: array<GatherVpl, 64>;
 var<workgroup> shared_count: u32;
+// Per VPL of the tile, one bit per part of the workgroup's 4³ cells (`VISIBILITY_PARTS`): the
+// virtual content blocks its path to the part's centre (`bounce_visible`).
+var<workgroup> tile_blocked: array<u32, 64>;
+
+// The workgroup's 4³ cells are tested for the visibility of a VPL in parts of 2³ cells, at
+// their centres. At 1080p on an H100 (moving, docs/benchmarks.md, 2026-12-06) the gather took
+// 2.2–2.9 ms more tested per cell (64 paths per VPL), 0.5–0.9 ms per part of 2³ (8), 0.08–
+// 0.16 ms once per workgroup; cornell's region FLIP (lavapipe) 0.1348 / 0.1362 / 0.1384.
+const VISIBILITY_PART: u32 = 2u;
+const VISIBILITY_PARTS: u32 = 8u;
 
 // One cell's sums of V_ρ per channel: bands 0–1, band 2's coefficients 4–7, and coefficient
 // 8 of the three channels. Nine coefficients: with four, light from behind a face subtracted a
@@ -139,6 +184,9 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     let first_cell = gather_info.chunks_first.yzw + block * 4u;
     let x = params.origin.xyz + (vec3f(id + gather_info.chunks_first.yzw) + 0.5) * cell_side();
     let bounce = !bounce_propagated();
+    let local = vec3u(t % 4u, (t / 4u) % 4u, t / 16u) / VISIBILITY_PART;
+    let parts = 4u / VISIBILITY_PART;
+    let my_part = (local.z * parts + local.y) * parts + local.x;
     if (t == 0u) { shared_count = select(0u, vpl_count, !bounce || block_read(block, blocks)); }
     let count = workgroupUniformLoad(&shared_count);
     if (count == 0u) { return; }
@@ -150,13 +198,37 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     for (var first = range.x; first < range.y; first += TILE) {
         if (first + t < range.y) { tile[t] = vpls[first + t]; }
         workgroupBarrier();
+        // Invocation t tests VPL t of the tile against the parts' centres.
+        if (bounce && bounce_visible() && first + t < range.y) {
+            let source = tile[t].position.xyz;
+            var bits = 0u;
+            for (var k = 0u; k < VISIBILITY_PARTS; k++) {
+                let parts = 4u / VISIBILITY_PART;
+                let part = vec3u(k % parts, (k / parts) % parts, k / (parts * parts));
+                let centre = params.origin.xyz
+                    + (vec3f(first_cell + part * VISIBILITY_PART) + 0.5 * f32(VISIBILITY_PART)) * cell_side();
+                if (blocked(source, centre)) { bits |= 1u << k; }
+            }
+            tile_blocked[t] = bits;
+        }
+        workgroupBarrier();
         let n = min(TILE, range.y - first);
         for (var i = 0u; i < n; i++) {
             let vpl = tile[i];
             let at = vpl_at_cell(vpl, x);
             let lights = u32(vpl.normal.w);
             if (rho) { rho_light(at, lights, &r); }
-            if (bounce) { bounce_light(at, lights, &c); }
+            if (bounce) {
+                // A path the virtual content blocks: in L_rv none of the VPL's light arrives,
+                // so V_Δ takes what V_μ gets (a real VPL) and adds nothing (a virtual one, or
+                // one whose change is already that, the photo's VPL taking it all). V_ρ keeps
+                // every path: checked there, the virtual faces' light lost more than it gained.
+                var seen = lights;
+                if (bounce_visible() && ((tile_blocked[i] >> my_part) & 1u) != 0u) {
+                    seen = select(0u, VPL_MU | VPL_DELTA_HIDDEN, (lights & VPL_MU) != 0u);
+                }
+                bounce_light(at, seen, &c);
+            }
         }
         workgroupBarrier();
     }
