@@ -198,20 +198,22 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     for (var first = range.x; first < range.y; first += TILE) {
         if (first + t < range.y) { tile[t] = vpls[first + t]; }
         workgroupBarrier();
-        // Invocation t tests VPL t of the tile against the parts' centres.
-        if (bounce && bounce_visible() && first + t < range.y) {
-            let source = tile[t].position.xyz;
-            var bits = 0u;
-            for (var k = 0u; k < VISIBILITY_PARTS; k++) {
-                let parts = 4u / VISIBILITY_PART;
-                let part = vec3u(k % parts, (k / parts) % parts, k / (parts * parts));
-                let centre = params.origin.xyz
-                    + (vec3f(first_cell + part * VISIBILITY_PART) + 0.5 * f32(VISIBILITY_PART)) * cell_side();
-                if (blocked(source, centre)) { bits |= 1u << k; }
+        // Invocation t tests VPL t of the tile against the parts' centres (the test is
+        // uniform: the barrier stays in uniform control flow, and off it costs nothing).
+        if (bounce && bounce_visible()) {
+            if (first + t < range.y) {
+                let source = tile[t].position.xyz;
+                var bits = 0u;
+                for (var k = 0u; k < VISIBILITY_PARTS; k++) {
+                    let part = vec3u(k % parts, (k / parts) % parts, k / (parts * parts));
+                    let centre = params.origin.xyz
+                        + (vec3f(first_cell + part * VISIBILITY_PART) + 0.5 * f32(VISIBILITY_PART)) * cell_side();
+                    if (blocked(source, centre)) { bits |= 1u << k; }
+                }
+                tile_blocked[t] = bits;
             }
-            tile_blocked[t] = bits;
+            workgroupBarrier();
         }
-        workgroupBarrier();
         let n = min(TILE, range.y - first);
         for (var i = 0u; i < n; i++) {
             let vpl = tile[i];
