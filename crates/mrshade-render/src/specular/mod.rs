@@ -567,6 +567,7 @@ pub const TRACE_SHADER: &str = wgsl!(
     "../../shaders/lib/sampling.wgsl",
     "../../shaders/lib/dfg.wgsl",
     "../../shaders/lib/cube.wgsl",
+    "../../shaders/lib/box_span.wgsl",
     "tracing.wgsl",
     "trace.wgsl",
 );
@@ -589,6 +590,7 @@ pub const RESOLVE_SHADER: &str = wgsl!(
     "../../shaders/lib/vpl.wgsl",
     "../../shaders/lib/ism.wgsl",
     "../../shaders/lib/vpl_light.wgsl",
+    "../../shaders/lib/box_span.wgsl",
     "tracing.wgsl",
     "caustics/levels.wgsl",
     "../../shaders/lib/photon.wgsl",

@@ -75,6 +75,14 @@ pub struct DlpvParams {
     pub gathered: UVec4,
 }
 
+impl DlpvParams {
+    /// Whether the virtual content stands in the gathered bounce light's paths
+    /// (`dlpv.bounce_visibility`; volume.wgsl `bounce_visible`).
+    pub fn bounce_visible(&self) -> bool {
+        self.gathered.w & 2 != 0
+    }
+}
+
 /// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
 const SOURCES: u32 = 4;
 const SOURCE_RHO: usize = 0;
@@ -550,7 +558,7 @@ impl LightTransport for DlpvMethod {
             // The VPLs before V_ρ is cleared below (their virtual surfaces read it).
             if let Some(gather) = &self.vpl_gather {
                 gather.record_vpls(rec);
-                self.gather_again = self.params.gathered.w & 2 != 0;
+                self.gather_again = self.params.bounce_visible();
             }
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);

@@ -62,6 +62,7 @@ pub const VPL_MARK_SHADER: &str =
 pub const VPL_GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/sh.wgsl",
+    "../../../shaders/lib/box_span.wgsl",
     "volume.wgsl",
     "vpl.wgsl",
     "vpl_gather.wgsl"

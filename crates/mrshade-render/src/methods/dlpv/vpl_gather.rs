@@ -218,8 +218,9 @@ impl VplGather {
         let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK as u32 } else { 1 };
         let map_vpls: u32 = counts.iter().sum::<u32>() * per_block;
         let cells = (values.info.x as u64).pow(3);
+        let visible = values.bounce_visible();
         // With the bounce's visibility, a VPL per cell of a virtual surface at most (`cell_vpls`).
-        let cell_vpls = if values.gathered.w & 2 != 0 { cells as u32 } else { 0 };
+        let cell_vpls = if visible { cells as u32 } else { 0 };
         let total = map_vpls + tiles[0] * tiles[1] + cell_vpls;
         let partial = partial_cell_bytes(gathered);
         let chunks = chunks(cells, partial);
@@ -242,7 +243,6 @@ impl VplGather {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let visible = values.gathered.w & 2 != 0;
         // Two vec4f a cell (vpl_aggregate.wgsl `planes`), with the bounce's visibility.
         let planes = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/virtual_planes"),
@@ -444,10 +444,10 @@ impl VplGather {
     }
 
     /// Sums the maps into VPLs (`record_vpls`), then writes the gathered volumes
-    /// (`record_gather`).
+    /// (`record_gather_pass`).
     pub fn record(&self, rec: &mut Recorder) {
         self.record_vpls(rec);
-        rec.compute(Self::LABEL, |pass| self.record_gather(pass));
+        self.record_gather_pass(rec);
     }
 
     /// Sums the maps into VPLs (with the bounce light: first flags the cells the pixels read;

@@ -46,14 +46,9 @@ fn blocked(a: vec3f, x: vec3f) -> bool {
     let len = length(d);
     if (len < 3.0) { return false; }
     let dir = d / len;
-    let inv = 1.0 / select(dir, vec3f(1e-20), abs(dir) < vec3f(1e-20));
-    let t0 = (vec3f(gather_info.rho_first.xyz) - ca) * inv;
-    let t1 = (vec3f(gather_info.rho_end.xyz) - ca) * inv;
-    let t_in = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z));
-    let t_out = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
-    let end = min(t_out, len - 1.5);
+    let span = box_span(ca, dir, vec3f(gather_info.rho_first.xyz), vec3f(gather_info.rho_end.xyz), len - 1.5);
     let h = cell_side();
-    for (var t = max(t_in, 1.5); t <= end; t += 0.5) {
+    for (var t = max(span.x, 1.5); t <= span.y; t += 0.5) {
         let c = vec3i(floor(ca + t * dir));
         if (!cell_inside(c)) { continue; }
         let plane = planes[2u * cell_index(c)];

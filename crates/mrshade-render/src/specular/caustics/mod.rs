@@ -573,6 +573,7 @@ pub const PHOTONS_SHADER: &str = wgsl!(
     "../../../shaders/lib/shadow.wgsl",
     "../../../shaders/lib/dfg.wgsl",
     "../../../shaders/lib/env.wgsl",
+    "../../../shaders/lib/box_span.wgsl",
     "../tracing.wgsl",
     "../../../shaders/lib/photon.wgsl",
     "../../../shaders/lib/photon_grid.wgsl",
