@@ -1,7 +1,8 @@
 //! Known answers of the `dlpv` method's volumes gathered from VPLs (Franke §2.12, vpl.wgsl):
 //! V_ρ at a cell is the sum of a lit floor's light, of the photo's light of the floor the
-//! camera sees and of a lit virtual face's; V_Δ's change on a floor is a lit face's light less
-//! that of the floor it hides, and with `dlpv.bounce_visibility` less the light it blocks.
+//! camera sees and of a lit virtual face's, and with `dlpv.virtual_bounce` of a virtual face
+//! that the floor lights; V_Δ's change on a floor is a lit face's light less that of the floor
+//! it hides, and with `dlpv.bounce_visibility` less the light it blocks.
 
 mod common;
 
@@ -148,10 +149,19 @@ fn rectangle(corner: Vec3, u: Vec3, v: Vec3, normal: Vec3, radiance: f32) -> Vec
 /// A real floor (albedo 0.6) under a real sun 45° up toward −x (2 W/m², its light toward +x),
 /// a virtual 8 cm cube (albedo 0.7) on it, 16³ cells of 2 cm reaching below the floor.
 fn sun_and_cube(settings: &str) -> Setup {
+    sun_and_cubes(&[[0.0, 0.04, 0.0]], &format!("resolution = 16\nextent = 4.0\n{settings}"))
+}
+
+/// The sun-and-cube scene with virtual 8 cm cubes (albedo 0.7) standing on the floor at
+/// `centres`, and `settings` of `dlpv`.
+fn sun_and_cubes(centres: &[[f32; 3]], settings: &str) -> Setup {
     let mut s = Setup::top_down(64);
     s.top_toml = "method = \"dlpv\"\n".into();
-    s.extra_toml += &format!("[dlpv]\nresolution = 16\nextent = 4.0\nphoto_bounce = false\n{settings}");
-    s.plane(0.3, 0.0, 0.6, true).cube([0.0, 0.04, 0.0], 0.04, false);
+    s.extra_toml += &format!("[dlpv]\nphoto_bounce = false\n{settings}");
+    s.plane(0.3, 0.0, 0.6, true);
+    for &c in centres {
+        s.cube(c, 0.04, false);
+    }
     let sun = s.gltf.light(json!({"type": "directional", "intensity": 2.0}));
     let rotation = glam::Quat::from_rotation_z(std::f32::consts::FRAC_PI_4)
         * glam::Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2);
@@ -275,7 +285,7 @@ fn the_cube_takes_from_the_floor_behind_it_the_light_it_blocks() {
         let (y0, y1) = (0.282_094_8, 0.488_602_5);
         (std::f32::consts::PI * y0 * c.x - 2.0 * std::f32::consts::PI / 3.0 * y1 * c.y) / (h * h)
     };
-    let (c, h, x) = volume_cell(&sun_and_cube("bounce_visibility = true\n"), at, VOLUME_DELTA);
+    let (c, h, x) = volume_cell(&sun_and_cube("virtual_bounce = true\nbounce_visibility = true\n"), at, VOLUME_DELTA);
     let seen = up_facing(c, h);
     let (c, h, _) = volume_cell(&sun_and_cube(""), at, VOLUME_DELTA);
     let unseen = up_facing(c, h);
@@ -297,4 +307,94 @@ fn the_cube_takes_from_the_floor_behind_it_the_light_it_blocks() {
     assert!(rel(seen, expected) < 0.25, "with visibility {seen} against {expected}");
     assert!(rel(unseen, hidden_light) < 0.25, "without {unseen} against {hidden_light}");
     assert!(seen < unseen, "the visibility takes no light: {seen} against {unseen}");
+}
+
+/// The irradiance `patches` give at `x` on a surface of normal `n`, those whose path a cube of
+/// `cubes` (centres, 4 cm half side) blocks left out: exact cosines.
+fn seen_light_at(x: Vec3, n: Vec3, patches: &[(Vec3, Vec3, f32, f32)], cubes: &[Vec3]) -> f32 {
+    let mut sum = 0.0f64;
+    for &(q, nq, radiance, area) in patches {
+        let d = x - q;
+        let dist2 = d.length_squared();
+        let w = d / dist2.sqrt();
+        let (cos_v, cos_r) = (nq.dot(w), -n.dot(w));
+        if cos_v > 0.0 && cos_r > 0.0 && !cubes.iter().any(|&c| common::segment_hits_box(q, x, c, 0.04)) {
+            sum += (radiance * cos_v * cos_r * area / dist2) as f64;
+        }
+    }
+    sum as f32
+}
+
+#[test]
+fn a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it() {
+    // Two virtual 8 cm cubes 4 cm over the sun-lit floor, 5 cm apart along z: the first one's
+    // face toward the second (+z) takes no sunlight, only the floor's. With
+    // `dlpv.virtual_bounce` its cells pass that light on (vpl_aggregate.wgsl
+    // `cell_vpls`, from the V_ρ of the frame before: two frames) and V_ρ's paths through the
+    // cubes are closed. V_ρ in the middle of the gap, read as the merge reads it for the
+    // second cube's face (facing −z, bands 0–2), against the CPU's sum over 2 mm patches of
+    // the lit floor it sees past the cubes and of the first cube's face, whose radiance
+    // 0.7/π·E is the light of the lit floor it sees (4 mm patches; the sunlit faces of both
+    // cubes face away from the cell). Without the virtual bounce the floor's light comes
+    // through the first cube, and its face's does not. (Cubes on the floor: their faces'
+    // lowest cells take half the light of the floor beside them, the VPLs' near field.)
+    let (a, b) = (Vec3::new(0.0, 0.08, 0.0), Vec3::new(0.0, 0.08, 0.13));
+    let read = |settings: &str, frames: u32| -> (f32, Vec3) {
+        let mut setup =
+            sun_and_cubes(&[a.to_array(), b.to_array()], &format!("resolution = 32\nextent = 2.0\n{settings}"));
+        // A sky too dim to count (0.4 % of the floor's light) whose lights' maps see the
+        // cubes' sides, so that their cells hold their planes: the sun's map sees no face
+        // that only the floor lights.
+        setup.probe = Some([0.002; 3]);
+        setup.sky_only = true;
+        let (_dir, session) = setup.session();
+        let ctx = mrshade_testkit::gpu();
+        let mut renderer = Renderer::new(&ctx, &session).unwrap();
+        renderer.render_frames(&ctx, frames, |_| {}).unwrap();
+        let method: &DlpvMethod = renderer.method_as().unwrap();
+        let params = method.params();
+        let (res, h) = (params.info.x, params.origin.w);
+        let at = ((Vec3::new(0.0, 0.08, 0.065) - params.origin.truncate()) / h).floor().as_uvec3();
+        let cell = ((at.z * res + at.y) * res + at.x) as usize;
+        let x = params.origin.truncate() + (at.as_vec3() + 0.5) * h;
+        let volumes = read_buffer(&ctx, &method.volumes).unwrap();
+        let band2 = read_buffer(&ctx, &method.rho_band2).unwrap();
+        let c = cast_slice::<u8, Vec4>(&volumes)[VOLUME_RHO * 3 * (res * res * res) as usize + cell];
+        let b2 = cast_slice::<u8, Vec4>(&band2)[cell * 4];
+        // The clamped cosine about +z (the light's way): bands 0–1, and band 2's zonal
+        // coefficient (3z² − 1) of the red channel.
+        let (y0, y1, pi) = (0.282_094_8, 0.488_602_5, std::f32::consts::PI);
+        let e = pi * y0 * c.x + 2.0 * pi / 3.0 * y1 * c.z + pi / 4.0 * 0.630_783_1 * b2.z;
+        (e / (h * h), x)
+    };
+    let (with, x) = read("virtual_bounce = true\n", 2);
+    let (first_frame, _) = read("virtual_bounce = true\n", 1);
+    let (without, _) = read("", 2);
+    // The lit floor under the volume, less the cubes' shadows.
+    let sun_way = Vec3::new(-1.0, 1.0, 0.0) * 0.5;
+    let floor: Vec<_> = rectangle(Vec3::new(-0.3, 0.0, -0.3), Vec3::X * 0.6, Vec3::Z * 0.6, Vec3::Y, SUN_FLOOR)
+        .into_iter()
+        .filter(|p| ![a, b].iter().any(|&c| common::segment_hits_box(p.0, p.0 + sun_way, c, 0.04)))
+        .collect();
+    let coarse_floor: Vec<_> = floor.chunks(2).map(|p| (p[0].0, p[0].1, p[0].2, p[0].3 * p.len() as f32)).collect();
+    let mut face = Vec::new();
+    for i in 0..20 {
+        for k in 0..20 {
+            let p = Vec3::new(-0.04 + (i as f32 + 0.5) * 0.004, 0.04 + (k as f32 + 0.5) * 0.004, 0.04);
+            let radiance = 0.7 / std::f32::consts::PI * seen_light_at(p, Vec3::Z, &coarse_floor, &[b]);
+            face.push((p, Vec3::Z, radiance, 0.004 * 0.004));
+        }
+    }
+    let floor_light = seen_light_at(x, -Vec3::Z, &floor, &[a, b]);
+    let face_light = seen_light_at(x, -Vec3::Z, &face, &[]);
+    let expected = floor_light + face_light;
+    eprintln!(
+        "cell at {x}: V_ρ facing −z {with:.4} (first frame, before the cubes' light: {first_frame:.4}; without \
+         the virtual bounce {without:.4}); the CPU's {expected:.4} (the lit floor {floor_light:.4}, the first \
+         cube's face {face_light:.4})"
+    );
+    assert!(face_light > 0.1 * expected, "the known answer holds the face's light: {face_light} of {expected}");
+    assert!(rel(with, expected) < 0.15, "with the virtual bounce {with} against {expected}");
+    assert!(rel(with - first_frame, face_light) < 0.3, "the face's light {} against {face_light}", with - first_frame);
+    assert!((with - expected).abs() < (without - expected).abs(), "{with} no nearer {expected} than {without}");
 }

@@ -173,6 +173,11 @@ fn set_overrides_are_as_strict_as_the_file() {
     assert!(Session::load(&path, &set(&["dlpv.soft_probe_shadows=true"])).unwrap().settings.dlpv.soft_probe_shadows);
     assert!(error(&path, &set(&["dlpv.soft_virtual_probe_shadows=soft"])).contains("expected a boolean"));
     assert!(error(&path, &set(&["dlpv.bounce_visibility=1"])).contains("expected a boolean"));
+    assert!(error(&path, &set(&["dlpv.virtual_bounce=yes"])).contains("expected a boolean"));
+    assert!(
+        error(&path, &set(&["dlpv.virtual_bounce=false", "dlpv.bounce_visibility=true"]))
+            .contains("needs `dlpv.virtual_bounce`")
+    );
     assert!(
         !Session::load(&path, &set(&["dlpv.soft_virtual_probe_shadows=false"]))
             .unwrap()

@@ -112,18 +112,29 @@ pub struct DlpvSettings {
     /// floor a block hides; and the light of the blocks' lit tops never reached the back wall
     /// (docs/benchmarks.md, 2026-12-06).
     pub bounce_light: DlpvTransport,
-    /// With the bounce light gathered: the virtual content stands in its paths. The
-    /// virtual surfaces the maps see mark the cells they lie in with their plane; a VPL's
-    /// light to a cell that crosses such a plane on the way leaves V_Δ (the real bounce light
-    /// the content blocks: the tall block's shadow of cornell's red wall on the back wall),
-    /// and each marked cell sends the light its surface takes from V_ρ on into V_Δ (the
-    /// content's own bounce light, without which the blocked light alone left its contact
-    /// shadows twice too dark). Region FLIP on lavapipe, 640×480, with soft virtual probe
-    /// shadows, off → on: cornell 0.1500 → 0.1362, desk-bunny 0.1044 → 0.1055, desk-spot-real
-    /// 0.1127 → 0.1103, desk-spot-virtual 0.1137 → 0.1113. Off by default: the paths' test
-    /// costs the gather 0.5–0.9 ms more per moving 1080p frame on an H100 (cornell 1.35 →
-    /// 2.30 ms; vpl_gather.wgsl `VISIBILITY_PART`), past the method's 1.5 ms: an option for
-    /// stills and comparisons (docs/benchmarks.md, 2026-12-06).
+    /// With the gathered volumes: the virtual surfaces pass on the light they take from the
+    /// real scene, and stand in the way of the light they pass on. The virtual surfaces the
+    /// maps see mark the cells they lie in with their mean plane per way they face; each
+    /// sends the light its surface takes from V_ρ on as a VPL (vpl_aggregate.wgsl
+    /// `cell_vpls`), into V_ρ (one virtual surface lights another: the red wall's light off
+    /// cornell's cube onto the tall block's foot, a third of the light there in the path
+    /// tracer's answer) and, where the paths are tested, into V_Δ (the content's own bounce
+    /// light on the real surfaces); in V_ρ's cells a VPL's light that crosses a marked plane on
+    /// its way is left out (the added light without it came through the blocks). Region FLIP
+    /// on lavapipe, 640×480, off → on: cornell 0.1547 → 0.1282 (paste 0.135), desk-bunny
+    /// 0.1066 → 0.1091 (0.114), desk-spot-real 0.1312 → 0.1295, desk-spot-virtual 0.1132 →
+    /// 0.1110, and three Cornell variants 0.1395 / 0.1286 / 0.1391 → 0.1103 / 0.1135 / 0.1079
+    /// (paste 0.1146 / 0.1412 / 0.1371): below paste on all. Off by default: the paths' test
+    /// in V_ρ's cells costs the gather 0.56–0.83 ms more per moving 1080p frame on an H100
+    /// (cornell 1.38 → 2.10 ms, desk-spot-virtual 1.47 → 2.34), past the method's 1.5 ms: an
+    /// option for stills and comparisons (docs/benchmarks.md, 2026-12-06).
+    pub virtual_bounce: bool,
+    /// With `dlpv.virtual_bounce`: the paths' test in every cell, not only in V_ρ's; a VPL's
+    /// light to a cell that crosses a virtual surface on the way also leaves V_Δ (the real
+    /// bounce light the content blocks: the tall block's shadow of cornell's red wall on the
+    /// back wall). It costs the gather 0.5–0.9 ms more per moving 1080p frame on an H100
+    /// (vpl_gather.wgsl `VISIBILITY_PART`), past the method's 1.5 ms: an option for stills and
+    /// comparisons (docs/benchmarks.md, 2026-12-06). Default false.
     pub bounce_visibility: bool,
     /// Texels per side of the blocks of a map summed into one VPL of the gathered V_ρ (a
     /// power of two, 8–256; at most a map's side). Default 16: 1024 VPLs per 512² map, 16 per
@@ -156,6 +167,7 @@ impl Default for DlpvSettings {
             photo_bounce: true,
             soft_probe_shadows: false,
             soft_virtual_probe_shadows: false,
+            virtual_bounce: false,
             bounce_visibility: false,
         }
     }
@@ -188,6 +200,11 @@ impl DlpvSettings {
             format!("must be between 0 and 90 degrees, got {}", self.sharp_probe_shadows_deg),
         )?;
         check_power_of_two(self.gather_block, 8, 256, "dlpv.gather_block", " texels")?;
+        check(
+            self.virtual_bounce || !self.bounce_visibility,
+            "dlpv.bounce_visibility",
+            "needs `dlpv.virtual_bounce` (the planes it tests the paths against)",
+        )?;
         check_probe_lights(self.probe_lights, "dlpv.probe_lights")
     }
 }
@@ -198,13 +215,17 @@ mod tests {
 
     #[test]
     fn bad_values_are_named() {
-        let cases: [(DlpvSettings, &str); 6] = [
+        let cases: [(DlpvSettings, &str); 7] = [
             (DlpvSettings { resolution: 48, ..Default::default() }, "dlpv.resolution"),
             (DlpvSettings { propagation_steps: 0, ..Default::default() }, "dlpv.propagation_steps"),
             (DlpvSettings { rsm_resolution: 4096, ..Default::default() }, "dlpv.rsm_resolution"),
             (DlpvSettings { probe_lights: 6, ..Default::default() }, "dlpv.probe_lights"),
             (DlpvSettings { sharp_probe_shadows_deg: f32::NAN, ..Default::default() }, "dlpv.sharp_probe_shadows_deg"),
             (DlpvSettings { gather_block: 4, ..Default::default() }, "dlpv.gather_block"),
+            (
+                DlpvSettings { virtual_bounce: false, bounce_visibility: true, ..Default::default() },
+                "dlpv.bounce_visibility",
+            ),
         ];
         for (bad, name) in cases {
             assert!(bad.validate().unwrap_err().contains(name), "{name}");

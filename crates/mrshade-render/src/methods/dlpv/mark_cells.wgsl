@@ -1,7 +1,8 @@
 // The blocks of the volume's cells that the pixels read (`dlpv.bounce_light = "gathered"`).
 
 @group(0) @binding(0) var<uniform> params: DlpvParams;
-// Per block of 4³ cells of the volume, 1 where a pixel reads one of its cells.
+// Per block of 4³ cells of the volume, bit 0 where a pixel reads one of its cells (bit 1:
+// vpl_aggregate.wgsl `cell_vpls`).
 @group(0) @binding(1) var<storage, read_write> blocks_read: array<u32>;
 @group(1) @binding(0) var<uniform> frame: Frame;
 @group(1) @binding(1) var gbuffer_depth_motion: texture_2d<f32>;
@@ -35,7 +36,7 @@ fn mark_cells(@builtin(global_invocation_id) id: vec3u) {
         for (var by = lo.y; by <= hi.y; by++) {
             for (var bx = lo.x; bx <= hi.x; bx++) {
                 let i = (bz * blocks + by) * blocks + bx;
-                if (blocks_read[i] == 0u) { blocks_read[i] = 1u; }
+                if ((blocks_read[i] & BLOCK_READ) == 0u) { blocks_read[i] = BLOCK_READ; }
             }
         }
     }

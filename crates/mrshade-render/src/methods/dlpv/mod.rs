@@ -24,10 +24,13 @@
 //! hides), summed at every cell a pixel reads; propagated, a floor lit itself through its own
 //! cells and a block's lit top never reached the wall behind it. Only the probe's broad lights'
 //! direct change is then injected (and not propagated, `dlpv.direct_steps`). The gathered
-//! VPLs see no surface on their way (the propagation's geometry volume is gone with it); with
-//! `dlpv.bounce_visibility` (an option: it costs the gather 0.5–0.9 ms) the virtual content
-//! blocks the bounce light's paths through the planes of the virtual surfaces in its cells,
-//! and those cells send their own light on (vpl_aggregate.wgsl `cell_vpls`).
+//! VPLs see no surface on their way (the propagation's geometry volume is gone with it) but
+//! the virtual ones, with `dlpv.virtual_bounce` (an option: it costs the gather 0.6–0.8 ms):
+//! the virtual surfaces mark their cells with their planes, each marked cell sends the light
+//! its surface takes from V_ρ on (one virtual surface lights another, and the real ones
+//! around), and in V_ρ's cells a path that crosses a marked plane carries nothing
+//! (vpl_aggregate.wgsl `cell_vpls`, vpl_gather.wgsl `blocked`); with `dlpv.bounce_visibility`
+//! (0.5–0.9 ms more) in every cell.
 
 mod lights;
 mod propagation;
@@ -76,10 +79,16 @@ pub struct DlpvParams {
 }
 
 impl DlpvParams {
-    /// Whether the virtual content stands in the gathered bounce light's paths
+    /// Whether the virtual content stands in the gathered bounce light's paths in every cell
     /// (`dlpv.bounce_visibility`; volume.wgsl `bounce_visible`).
     pub fn bounce_visible(&self) -> bool {
         self.gathered.w & 2 != 0
+    }
+
+    /// Whether the virtual surfaces pass on their light and stand in its way in V_ρ's cells
+    /// (`dlpv.virtual_bounce`; volume.wgsl `virtual_bounce`).
+    pub fn virtual_bounce(&self) -> bool {
+        self.gathered.w & 4 != 0
     }
 }
 
@@ -141,7 +150,7 @@ pub struct DlpvMethod {
     stale: bool,
     /// The camera or the photo changed: V_ρ takes the photo's light again.
     stale_photo: bool,
-    /// Gather once more next frame (with `dlpv.bounce_visibility`, after the maps were drawn).
+    /// Gather once more next frame (with `dlpv.virtual_bounce`, after the maps were drawn).
     gather_again: bool,
 }
 
@@ -269,7 +278,9 @@ impl DlpvMethod {
                 rho_gathered as u32,
                 (gathered != 0 && settings.photo_bounce) as u32,
                 settings.soft_probe_shadows as u32 | (settings.soft_virtual_probe_shadows as u32) << 1,
-                bounce_gathered as u32 | ((bounce_gathered && settings.bounce_visibility) as u32) << 1,
+                bounce_gathered as u32
+                    | ((bounce_gathered && settings.bounce_visibility) as u32) << 1
+                    | ((bounce_gathered && settings.virtual_bounce) as u32) << 2,
             ),
         };
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
@@ -543,7 +554,7 @@ impl LightTransport for DlpvMethod {
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         // A new photo or camera alone: the maps are as they were, V_ρ is gathered again; so
-        // once after the maps were drawn anew, with the bounce's visibility: the virtual
+        // once after the maps were drawn anew, with the virtual surfaces' bounce: their
         // surfaces' VPLs (vpl_aggregate.wgsl `cell_vpls`) read the last gather's V_ρ, zero
         // before a still's first frame.
         let again = std::mem::take(&mut self.stale_photo) || std::mem::take(&mut self.gather_again);
@@ -558,7 +569,7 @@ impl LightTransport for DlpvMethod {
             // The VPLs before V_ρ is cleared below (their virtual surfaces read it).
             if let Some(gather) = &self.vpl_gather {
                 gather.record_vpls(rec);
-                self.gather_again = self.params.bounce_visible();
+                self.gather_again = self.params.virtual_bounce();
             }
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);

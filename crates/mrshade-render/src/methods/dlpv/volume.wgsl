@@ -21,7 +21,9 @@ struct DlpvParams {
     // probe's shadows are soft (SOFT_REAL, SOFT_VIRTUAL); w: bit 0 when V_μ and V_Δ's
     // indirect change are gathered (`dlpv.bounce_light`): their sources are neither injected
     // nor propagated; bit 1 when the virtual content stands in the gathered bounce light's
-    // paths (`dlpv.bounce_visibility`, vpl_gather.wgsl `blocked`)
+    // paths in every cell (`dlpv.bounce_visibility`, vpl_gather.wgsl `blocked`); bit 2 when
+    // the virtual surfaces pass on their light and stand in its way in V_ρ's cells
+    // (`dlpv.virtual_bounce`, vpl_aggregate.wgsl `cell_vpls`)
     gathered: vec4u,
 }
 
@@ -32,6 +34,13 @@ const SOFT_VIRTUAL: u32 = 2u;
 fn rho_propagated() -> bool { return params.gathered.x == 0u; }
 fn bounce_propagated() -> bool { return (params.gathered.w & 1u) == 0u; }
 fn bounce_visible() -> bool { return (params.gathered.w & 2u) != 0u; }
+fn virtual_bounce() -> bool { return (params.gathered.w & 4u) != 0u; }
+
+// Bits of a block of 4³ cells in `blocks_read` (mark_cells.wgsl, vpl_aggregate.wgsl,
+// vpl_gather.wgsl): a pixel reads one of its cells; a virtual surface's cell lies in it or
+// beside it (`dlpv.virtual_bounce`: V_ρ is gathered there for the light the surface passes on).
+const BLOCK_READ: u32 = 1u;
+const BLOCK_NEAR_VIRTUAL: u32 = 2u;
 
 // `info.w`: a VPL goes into the cell it lies in, or trilinearly into the eight around it.
 const SPLAT_CELL: u32 = 0u;

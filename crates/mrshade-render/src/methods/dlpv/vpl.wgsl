@@ -47,3 +47,6 @@ const VPL_DELTA_HIDDEN: u32 = 8u;
 // Taken from V_ρ: a real surface the camera sees (its photo's light is in V_ρ, vpl_photo.wgsl)
 // that a virtual surface hides from the light — the virtual objects' shadow on it.
 const VPL_RHO_HIDDEN: u32 = 16u;
+// A virtual surface's cell passing on the light it takes (vpl_aggregate.wgsl `cell_vpls`): it
+// lights no cell of V_ρ beside its own plane (vpl_gather.wgsl `lights_rho_cell`).
+const VPL_CELL: u32 = 32u;

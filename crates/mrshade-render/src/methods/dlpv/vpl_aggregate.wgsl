@@ -16,54 +16,157 @@
 @group(0) @binding(5) var<uniform> gather_info: vec4u;
 @group(0) @binding(6) var<storage, read_write> vpl_count: atomic<u32>;
 @group(0) @binding(7) var<uniform> cells_gathered: GatherInfo;
-// Per cell two vec4f, cleared before the pass: the plane of a virtual surface the maps see in
-// it (unit normal, ⟨n, p⟩; zero where none) and its diffuse albedo (`bounce_visible`).
+// Per cell two vec4f, written by `cell_vpls`: the mean plane of the virtual surfaces the maps
+// see in it (unit normal, ⟨n, p⟩; zero where none) and their diffuse albedo (vpl_gather.wgsl
+// `blocked` reads it).
 @group(0) @binding(8) var<storage, read_write> planes: array<vec4f>;
 // The accumulated volumes and V_ρ's band 2 as the last gather left them (volume_read.wgsl),
 // for the light the virtual surfaces send on (`cell_vpls`).
 @group(0) @binding(9) var<storage, read> volumes: array<vec4f>;
 @group(0) @binding(10) var<storage, read> rho_band2: array<vec4f>;
+// Per cell and way a surface can face (`PLANE_WAYS`: ±x, ±y, ±z, by its normal's largest
+// component), `PLANE_SUMS` fixed-point sums over the virtual texels the maps see in it,
+// cleared before the pass (`mark_plane`): integer sums are the same in whatever order the
+// texels of many maps add to them, so that a still renders the same twice (one texel's plane,
+// written by whichever came last, moved cornell's region FLIP by up to 0.002 from run to
+// run). By way, so that a cell on a block's edge holds both its faces (one mean plane there,
+// tilted between them, sent a third of a face's light along it).
+@group(0) @binding(11) var<storage, read_write> plane_sums: array<atomic<i32>>;
+// Per block of 4³ cells, `BLOCK_*` bits (volume.wgsl): `cell_vpls` flags the blocks of the
+// cells within one of a virtual surface's, whose V_ρ it reads next time.
+@group(0) @binding(12) var<storage, read_write> blocks_read: array<u32>;
 
-// Marks the cell of virtual surface point `p` (normal `n`, diffuse albedo `albedo`) with its
-// plane. Texels of one cell from several maps or faces race; any one's plane will do: the
-// test that reads it (vpl_gather.wgsl `blocked`) asks only whether a path crosses a surface
-// there, and a cell of a face holds that face's plane whichever texel wrote it.
+const PLANE_WAYS: u32 = 6u;
+// The sums of one way: the normal (3), its plane's offset from the cell's centre in cells
+// (1), the diffuse albedo (3) and the texels.
+const PLANE_SUMS: u32 = 8u;
+// Fixed-point units per unit (a normal's component, an offset in cells, an albedo, each at
+// most 1 in magnitude): `PLANE_TEXELS` of them sum to at most 2^30.
+const PLANE_UNITS: f32 = 65536.0;
+// Texels a way of a cell takes at most (a 2.4 cm cell holds about 1 500 of a 512² map over
+// cornell's floor); those past it, in whatever order they come, are left out.
+const PLANE_TEXELS: i32 = 16384;
+
+fn fixed(x: f32) -> i32 { return i32(round(clamp(x, -1.0, 1.0) * PLANE_UNITS)); }
+
+// The way unit normal `n` faces: 0–5 for +x, −x, +y, −y, +z, −z.
+fn way_of(n: vec3f) -> u32 {
+    let a = abs(n);
+    let axis = select(select(2u, 1u, a.y >= a.z), 0u, a.x >= a.y && a.x >= a.z);
+    return 2u * axis + select(1u, 0u, n[axis] >= 0.0);
+}
+
+// Adds the virtual surface point `p` (normal `n`, diffuse albedo `albedo`) to its cell's sums.
 fn mark_plane(p: vec3f, n: vec3f, albedo: vec3f) {
     let c = vec3i(floor(cell_coords(p)));
     if (!cell_inside(c)) { return; }
-    let i = cell_index(c);
-    planes[2u * i] = vec4f(n, dot(n, p));
-    planes[2u * i + 1u] = vec4f(albedo, 1.0);
+    let at = (cell_index(c) * PLANE_WAYS + way_of(n)) * PLANE_SUMS;
+    if (atomicAdd(&plane_sums[at + 7u], 1) >= PLANE_TEXELS) {
+        atomicSub(&plane_sums[at + 7u], 1);
+        return;
+    }
+    let centre = params.origin.xyz + (vec3f(c) + 0.5) * cell_side();
+    // Within ±√3/2 cells: p lies in the cell.
+    let offset = dot(n, p - centre) / cell_side();
+    atomicAdd(&plane_sums[at], fixed(n.x));
+    atomicAdd(&plane_sums[at + 1u], fixed(n.y));
+    atomicAdd(&plane_sums[at + 2u], fixed(n.z));
+    atomicAdd(&plane_sums[at + 3u], fixed(offset));
+    atomicAdd(&plane_sums[at + 4u], fixed(albedo.r));
+    atomicAdd(&plane_sums[at + 5u], fixed(albedo.g));
+    atomicAdd(&plane_sums[at + 6u], fixed(albedo.b));
 }
 
-// One invocation per cell: a cell that holds a virtual surface's plane appends a VPL of the
-// change (V_Δ) with the light that surface takes from V_ρ, E·albedo over the cell's share of
-// the plane (h² / the normal's largest component), at the plane's point nearest the cell's
-// centre. V_ρ is the last gather's (a frame late while the content moves; `VplGather`
-// gathers once more after a still's first frame). The maps' VPLs of the virtual surfaces
-// (`hiding`) carry their direct light; these their indirect light, which the blocked bounce
-// light needs beside it: blocked alone, cornell's contact shadows were twice too dark.
+// The mean surface of one way of a cell: unit normal, offset from the centre (m), albedo and
+// texels (0: none).
+struct CellSurface {
+    n: vec3f,
+    offset: f32,
+    albedo: vec3f,
+    texels: f32,
+}
+
+fn cell_surface(at: u32) -> CellSurface {
+    let texels = f32(atomicLoad(&plane_sums[at + 7u]));
+    if (texels == 0.0) { return CellSurface(vec3f(0.0), 0.0, vec3f(0.0), 0.0); }
+    let sum = vec3f(f32(atomicLoad(&plane_sums[at])), f32(atomicLoad(&plane_sums[at + 1u])),
+                    f32(atomicLoad(&plane_sums[at + 2u])));
+    let albedo = vec3f(f32(atomicLoad(&plane_sums[at + 4u])), f32(atomicLoad(&plane_sums[at + 5u])),
+                       f32(atomicLoad(&plane_sums[at + 6u])));
+    let offset = f32(atomicLoad(&plane_sums[at + 3u])) / PLANE_UNITS / texels * cell_side();
+    return CellSurface(normalize(sum), offset, albedo / PLANE_UNITS / texels, texels);
+}
+
+// One invocation per cell: for each way its virtual texels face, a VPL of the light that
+// surface takes from V_ρ, E·albedo over the cell's share of its mean plane (h² / the
+// normal's largest component) times the way's share of the cell's texels (the two faces of
+// a block's edge share its cell; each with the whole cell's plane, a curved bunny's cells
+// sent out up to twice their light and its shadows on the desk went lighter), at the plane's
+// point nearest the cell's centre; and in
+// `planes` the plane of the way with the most texels, which the gather's paths test. The
+// VPLs light V_ρ (one virtual surface lights another: on cornell the red wall's light off the
+// cube's side brightens the tall block's foot by a third in the path tracer's answer, which
+// the maps' direct light alone left out) and V_Δ (the content's own bounce light on real
+// surfaces, without which its blocked light alone left cornell's contact shadows twice too
+// dark). V_ρ is the last gather's (a frame late while the content moves; `VplGather` gathers
+// once more after a still's first frame); the maps' VPLs of the virtual surfaces (`hiding`)
+// carry their direct light.
 @compute @workgroup_size(64)
 fn cell_vpls(@builtin(global_invocation_id) id: vec3u) {
     let res = params.info.x;
     let i = id.x;
     if (i >= cells()) { return; }
-    let plane = planes[2u * i];
-    if (dot(plane.xyz, plane.xyz) < 0.25) { return; }
-    let c = vec3f(f32(i % res), f32((i / res) % res), f32(i / (res * res)));
     let h = cell_side();
+    let c = vec3f(f32(i % res), f32((i / res) % res), f32(i / (res * res)));
     let centre = params.origin.xyz + (c + 0.5) * h;
-    let n = normalize(plane.xyz);
-    let p = centre - (dot(n, centre) - plane.w) * n;
-    let e = max(volume_irradiance(VOLUME_RHO, p, n), vec3f(0.0));
-    let area = h * h / max(max(abs(n.x), abs(n.y)), abs(n.z));
-    let flux = planes[2u * i + 1u].rgb * e * area;
-    if (all(flux == vec3f(0.0))) { return; }
-    var vpl: GatherVpl;
-    vpl.position = vec4f(p, area);
-    vpl.normal = vec4f(n, f32(VPL_DELTA));
-    vpl.flux = vec4f(flux, 0.0);
-    vpls[atomicAdd(&vpl_count, 1u)] = vpl;
+    var most = 0.0;
+    var plane = vec4f(0.0);
+    var plane_albedo = vec4f(0.0);
+    var texels = 0.0;
+    for (var way = 0u; way < PLANE_WAYS; way++) {
+        texels += f32(atomicLoad(&plane_sums[(i * PLANE_WAYS + way) * PLANE_SUMS + 7u]));
+    }
+    for (var way = 0u; way < PLANE_WAYS; way++) {
+        let s = cell_surface((i * PLANE_WAYS + way) * PLANE_SUMS);
+        if (s.texels == 0.0) { continue; }
+        if (s.texels > most) {
+            most = s.texels;
+            plane = vec4f(s.n, dot(s.n, centre) + s.offset);
+            plane_albedo = vec4f(s.albedo, 1.0);
+        }
+        let p = centre + s.offset * s.n;
+        let e = max(volume_irradiance(VOLUME_RHO, p, s.n), vec3f(0.0));
+        let area = h * h / max(max(abs(s.n.x), abs(s.n.y)), abs(s.n.z)) * s.texels / texels;
+        let flux = s.albedo * e * area;
+        if (all(flux == vec3f(0.0))) { continue; }
+        var vpl: GatherVpl;
+        vpl.position = vec4f(p, area);
+        vpl.normal = vec4f(s.n, f32(VPL_RHO | VPL_DELTA | VPL_CELL));
+        vpl.flux = vec4f(flux, 0.0);
+        vpls[atomicAdd(&vpl_count, 1u)] = vpl;
+    }
+    planes[2u * i] = plane;
+    planes[2u * i + 1u] = plane_albedo;
+    if (texels > 0.0) { flag_blocks_near(vec3i(c)); }
+}
+
+// Flags the blocks of the cells within one of cell `c` (the cells V_ρ is read from at its
+// surface): the gather sums V_ρ only in blocks a pixel reads or these. Every invocation that
+// writes a word writes the same bits (BLOCK_READ was set by an earlier pass).
+fn flag_blocks_near(c: vec3i) {
+    let last = vec3i(i32(params.info.x) - 1);
+    let lo = clamp(c - 1, vec3i(0), last) / 4;
+    let hi = clamp(c + 1, vec3i(0), last) / 4;
+    let blocks = i32(params.info.x / 4u);
+    for (var bz = lo.z; bz <= hi.z; bz++) {
+        for (var by = lo.y; by <= hi.y; by++) {
+            for (var bx = lo.x; bx <= hi.x; bx++) {
+                let k = (bz * blocks + by) * blocks + bx;
+                let v = blocks_read[k];
+                if ((v & BLOCK_NEAR_VIRTUAL) == 0u) { blocks_read[k] = v | BLOCK_NEAR_VIRTUAL; }
+            }
+        }
+    }
 }
 
 // Appends the VPL of `sum`, lighting the volumes of `lights` (VPL_* bits), if it holds any
@@ -151,7 +254,7 @@ fn aggregate(@builtin(workgroup_id) block: vec3u, @builtin(local_invocation_id) 
             let real = rsm[(pair.x * res + y) * res + x];
             let virt = rsm[(pair.y * res + y) * res + x];
             let real_hit = real.position.w > 0.5;
-            if (bounce_visible() && virt.position.w > 0.5) {
+            if (virtual_bounce() && virt.position.w > 0.5) {
                 mark_plane(virt.position.xyz, virt.normal.xyz, virt.albedo.rgb * (1.0 - virt.albedo.w));
             }
             if (virtual_nearer(light, real, virt)) {

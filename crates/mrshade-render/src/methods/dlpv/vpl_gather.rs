@@ -108,16 +108,25 @@ const PHOTO_TILE_ROWS: u32 = 40;
 /// GPU bytes of the gathered volumes (`gathered`: `GATHERED_*` bits): their VPLs
 /// (`pairs_texels`: the maps' pairs × texels per map, per set, up to four VPLs per block;
 /// the photo's tiles for images up to 4:1; with the bounce light one per cell and the
-/// cells' planes, `dlpv.bounce_visibility`) and the gather's partial sums.
+/// cells' planes and their sums, `dlpv.virtual_bounce`) and the gather's partial sums.
 pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64, gathered: u32) -> u64 {
     let vpl = std::mem::size_of::<GatherVpl>() as u64;
     let map_vpls: u64 = pairs_texels.iter().map(|&(pairs, texels)| pairs * (texels / (block * block)).max(1)).sum();
     let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK } else { 1 };
     let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
     let partial = partial_cell_bytes(gathered);
-    let cell_bytes = if gathered & GATHERED_BOUNCE != 0 { cells * (vpl + 32) } else { 0 };
+    let cell_bytes =
+        if gathered & GATHERED_BOUNCE != 0 { cells * (VPLS_PER_CELL * vpl + 32 + PLANE_SUM_BYTES) } else { 0 };
     (map_vpls * per_block + photo_vpls) * vpl + cell_bytes + chunks(cells, partial) as u64 * cells * partial
 }
+
+/// Bytes of a cell's sums of the virtual texels in it, per way they face (vpl_aggregate.wgsl
+/// `PLANE_WAYS` × `PLANE_SUMS`).
+const PLANE_SUM_BYTES: u64 = 6 * 8 * 4;
+
+/// VPLs a cell of a virtual surface appends at most (vpl_aggregate.wgsl `cell_vpls`: one per
+/// way its texels face).
+const VPLS_PER_CELL: u64 = 6;
 
 /// VPLs a block of a map appends at most with the bounce light gathered (vpl_aggregate.wgsl):
 /// its lit real texels, its hidden ones the camera does not see and those it sees, and the
@@ -148,10 +157,11 @@ pub(super) struct MapSet<'a> {
 /// The two passes and the VPLs between them.
 pub(super) struct VplGather {
     aggregate: wgpu::ComputePipeline,
-    /// The virtual surfaces' cells as VPLs of their light (with `dlpv.bounce_visibility`).
+    /// The virtual surfaces' cells as VPLs of their light (with `dlpv.virtual_bounce`).
     cell_vpls: Option<wgpu::ComputePipeline>,
-    /// Their planes (vpl_aggregate.wgsl `planes`).
-    planes: wgpu::Buffer,
+    /// The sums of the virtual texels in each cell they hold (vpl_aggregate.wgsl
+    /// `plane_sums`), cleared before the maps are summed.
+    plane_sums: wgpu::Buffer,
     /// Cells in the volume.
     cells: u32,
     photo_tiles: wgpu::ComputePipeline,
@@ -218,9 +228,10 @@ impl VplGather {
         let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK as u32 } else { 1 };
         let map_vpls: u32 = counts.iter().sum::<u32>() * per_block;
         let cells = (values.info.x as u64).pow(3);
-        let visible = values.bounce_visible();
-        // With the bounce's visibility, a VPL per cell of a virtual surface at most (`cell_vpls`).
-        let cell_vpls = if visible { cells as u32 } else { 0 };
+        let virtual_bounce = values.virtual_bounce();
+        // With the virtual surfaces' bounce, a VPL per way a cell's virtual surfaces face
+        // (`cell_vpls`).
+        let cell_vpls = if virtual_bounce { (cells * VPLS_PER_CELL) as u32 } else { 0 };
         let total = map_vpls + tiles[0] * tiles[1] + cell_vpls;
         let partial = partial_cell_bytes(gathered);
         let chunks = chunks(cells, partial);
@@ -243,10 +254,18 @@ impl VplGather {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        // Two vec4f a cell (vpl_aggregate.wgsl `planes`), with the bounce's visibility.
+        // Two vec4f a cell (vpl_aggregate.wgsl `planes`) and their sums, with the virtual
+        // surfaces' bounce.
+        let per_cell = |bytes: u64| if virtual_bounce { cells * bytes } else { bytes };
         let planes = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/virtual_planes"),
-            size: if visible { cells * 32 } else { 32 },
+            size: per_cell(32),
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let plane_sums = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dlpv/virtual_plane_sums"),
+            size: per_cell(PLANE_SUM_BYTES),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -271,6 +290,8 @@ impl VplGather {
                 bind::storage_rw(8, cs),
                 bind::storage(9, cs),
                 bind::storage(10, cs),
+                bind::storage_rw(11, cs),
+                bind::storage_rw(12, cs),
             ],
         );
         // The frame, the G-buffer's depth, normals and flags, the photo (vpl_photo.wgsl).
@@ -305,7 +326,7 @@ impl VplGather {
             compute_pipeline_entry(device, "dlpv/vpl_aggregate", VPL_AGGREGATE_SHADER, "aggregate", &layouts);
         let photo_tiles =
             compute_pipeline_entry(device, "dlpv/vpl_photo_tiles", VPL_AGGREGATE_SHADER, "photo_tiles", &layouts);
-        let cell_vpls = visible
+        let cell_vpls = virtual_bounce
             .then(|| compute_pipeline_entry(device, "dlpv/vpl_cell_vpls", VPL_AGGREGATE_SHADER, "cell_vpls", &layouts));
         let mark_cells = (gathered & GATHERED_BOUNCE != 0).then(|| {
             let layout =
@@ -349,6 +370,8 @@ impl VplGather {
                     planes.as_entire_binding(),
                     volumes.as_entire_binding(),
                     rho_band2.as_entire_binding(),
+                    plane_sums.as_entire_binding(),
+                    blocks_read.as_entire_binding(),
                 ],
             )
         };
@@ -417,7 +440,7 @@ impl VplGather {
         Self {
             aggregate,
             cell_vpls,
-            planes,
+            plane_sums,
             cells: cells as u32,
             photo_tiles,
             mark_cells,
@@ -451,7 +474,7 @@ impl VplGather {
     }
 
     /// Sums the maps into VPLs (with the bounce light: first flags the cells the pixels read;
-    /// with its visibility, last the virtual surfaces' cells, which read the V_ρ the last
+    /// with the virtual surfaces' bounce, last their cells, which read the V_ρ the last
     /// gather left: before the volumes are cleared).
     pub fn record_vpls(&self, rec: &mut Recorder) {
         rec.encoder.clear_buffer(&self.count, 0, None);
@@ -459,7 +482,7 @@ impl VplGather {
             rec.encoder.clear_buffer(&self.blocks_read, 0, None);
         }
         if self.cell_vpls.is_some() {
-            rec.encoder.clear_buffer(&self.planes, 0, None);
+            rec.encoder.clear_buffer(&self.plane_sums, 0, None);
         }
         rec.compute(Self::VPLS_LABEL, |pass| {
             pass.set_bind_group(1, &self.camera_group, &[]);

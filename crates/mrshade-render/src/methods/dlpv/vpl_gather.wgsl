@@ -29,8 +29,8 @@
 @group(0) @binding(7) var<storage, read> blocks_read: array<u32>;
 // V_ρ's band 2 per cell (volume.wgsl `rho_band2`), which `gather_sum` writes with V_ρ.
 @group(0) @binding(8) var<storage, read_write> rho_band2: array<vec4f>;
-// Per cell the plane of a virtual surface in it and its albedo (vpl_aggregate.wgsl
-// `mark_plane`), with `bounce_visible`.
+// Per cell the plane of the virtual surfaces in it that most texels face and their albedo
+// (vpl_aggregate.wgsl `cell_vpls`), with `virtual_bounce`.
 @group(0) @binding(9) var<storage, read> planes: array<vec4f>;
 
 // Whether the path from `a` (a VPL) to `x` (a cell's centre) crosses a virtual surface: at
@@ -38,6 +38,8 @@
 // points half a cell before and after lie on either side of the plane of the cell there
 // (`planes`). A path that only grazes a surface's cell (along a face, over a contact) crosses
 // no plane: marking the cells alone blocked it, and a floor beside a block lost its light.
+// (Every cell instead missed crossings: with `virtual_bounce` the light of the floor behind a
+// cube came through it, test `a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it`.)
 // The first and the last cell and a half are left out: a VPL on a virtual surface leaves its
 // own plane, and the cells the merge reads beside a face lie partly behind it.
 fn blocked(a: vec3f, x: vec3f) -> bool {
@@ -68,11 +70,24 @@ var<workgroup> shared_count: u32;
 var<workgroup> tile_blocked: array<u32, 64>;
 
 // The workgroup's 4³ cells are tested for the visibility of a VPL in parts of 2³ cells, at
-// their centres. At 1080p on an H100 (moving, docs/benchmarks.md, 2026-12-06) the gather took
-// 2.2–2.9 ms more tested per cell (64 paths per VPL), 0.5–0.9 ms per part of 2³ (8), 0.08–
-// 0.16 ms once per workgroup; cornell's region FLIP (lavapipe) 0.1348 / 0.1362 / 0.1384.
+// their centres: in V_ρ's cells (`dlpv.virtual_bounce`), or in every cell
+// (`dlpv.bounce_visibility`). At 1080p on an H100 (moving, docs/benchmarks.md, 2026-12-06)
+// the gather over every cell took 2.2–2.9 ms more tested per cell (64 paths per VPL),
+// 0.5–0.9 ms per part of 2³ (8), 0.08–0.16 ms once per workgroup; cornell's region FLIP
+// (lavapipe) 0.1348 / 0.1362 / 0.1384. Once per workgroup in V_ρ's cells, where the cells a
+// face's pixels read lie within a part of it, left the light of the far side of a block on
+// its faces (cornell 0.1655 against 0.1320).
 const VISIBILITY_PART: u32 = 2u;
 const VISIBILITY_PARTS: u32 = 8u;
+
+// Whether a VPL of `lights` at `vpl` (a virtual surface's cell: `VPL_CELL`) lights V_ρ at
+// cell centre `x`: a cell's light lights no cell within a cell and a half of its own plane,
+// which are those its own surface's pixels read (its light along its face went into the
+// face itself, brightening cornell's blocks by 8 of 255).
+fn lights_rho_cell(vpl: GatherVpl, lights: u32, x: vec3f) -> bool {
+    if ((lights & VPL_CELL) == 0u) { return true; }
+    return abs(dot(vpl.normal.xyz, x - vpl.position.xyz)) >= 1.5 * cell_side();
+}
 
 // One cell's sums of V_ρ per channel: bands 0–1, band 2's coefficients 4–7, and coefficient
 // 8 of the three channels. Nine coefficients: with four, light from behind a face subtracted a
@@ -149,7 +164,14 @@ fn partial_vectors() -> u32 { return select(RHO_VECTORS + 6u, RHO_VECTORS, bounc
 // the bounce light gathered the box is the whole volume and `mark_cells` (mark_cells.wgsl) has
 // flagged the blocks.
 fn block_read(block: vec3u, blocks: vec3u) -> bool {
-    return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] != 0u;
+    return (blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] & BLOCK_READ) != 0u;
+}
+
+// Whether block `block` holds or borders a virtual surface's cell (`BLOCK_NEAR_VIRTUAL`, with
+// `dlpv.virtual_bounce`, when the gathered box is the whole volume).
+fn block_near_virtual(block: vec3u, blocks: vec3u) -> bool {
+    return virtual_bounce()
+        && (blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] & BLOCK_NEAR_VIRTUAL) != 0u;
 }
 
 fn cells_gathered() -> u32 { return gather_info.size.x * gather_info.size.y * gather_info.size.z; }
@@ -182,11 +204,20 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     let local = vec3u(t % 4u, (t / 4u) % 4u, t / 16u) / VISIBILITY_PART;
     let parts = 4u / VISIBILITY_PART;
     let my_part = (local.z * parts + local.y) * parts + local.x;
-    if (t == 0u) { shared_count = select(0u, vpl_count, !bounce || block_read(block, blocks)); }
-    let count = workgroupUniformLoad(&shared_count);
-    if (count == 0u) { return; }
     let rho = !rho_propagated() && all(first_cell < gather_info.rho_end.xyz)
         && all(first_cell + 4u > gather_info.rho_first.xyz);
+    // The bounce light where a pixel reads it; V_ρ where a pixel reads it or, with the virtual
+    // surfaces' bounce, beside any virtual surface: the faces the camera does not see pass on
+    // their light too (cornell's cube lights the tall block's foot with its side). In all of
+    // V_ρ's box, the empty cells between the surfaces cost as much.
+    let read = !bounce || block_read(block, blocks);
+    if (t == 0u) { shared_count = select(0u, vpl_count, read || (rho && block_near_virtual(block, blocks))); }
+    let count = workgroupUniformLoad(&shared_count);
+    if (count == 0u) { return; }
+    // The paths are tested in V_ρ's cells with the virtual surfaces' bounce (also where no
+    // pixel reads them: the faces the camera does not see pass on their light), in every cell
+    // with the bounce's visibility (uniform: the workgroup's).
+    let tested = bounce && virtual_bounce() && (rho || bounce_visible());
     let range = chunk_range(group.y, count);
     var r: RhoSums;
     var c: BounceSums;
@@ -195,7 +226,7 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
         workgroupBarrier();
         // Invocation t tests VPL t of the tile against the parts' centres (the test is
         // uniform: the barrier stays in uniform control flow, and off it costs nothing).
-        if (bounce && bounce_visible()) {
+        if (tested) {
             if (first + t < range.y) {
                 let source = tile[t].position.xyz;
                 var bits = 0u;
@@ -214,14 +245,20 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
             let vpl = tile[i];
             let at = vpl_at_cell(vpl, x);
             let lights = u32(vpl.normal.w);
-            if (rho) { rho_light(at, lights, &r); }
-            if (bounce) {
+            let blocked_here = tested && ((tile_blocked[i] >> my_part) & 1u) != 0u;
+            // A path the virtual content blocks carries nothing into V_ρ (with the virtual
+            // surfaces' own light added, every path open let the light of a block's far side
+            // through it onto its faces).
+            if (rho && !blocked_here && lights_rho_cell(vpl, lights, x)) { rho_light(at, lights, &r); }
+            if (bounce && read) {
                 // A path the virtual content blocks: in L_rv none of the VPL's light arrives,
                 // so V_Δ takes what V_μ gets (a real VPL) and adds nothing (a virtual one, or
-                // one whose change is already that, the photo's VPL taking it all). V_ρ keeps
-                // every path: checked there, the virtual faces' light lost more than it gained.
-                var seen = lights;
-                if (bounce_visible() && ((tile_blocked[i] >> my_part) & 1u) != 0u) {
+                // one whose change is already that, the photo's VPL taking it all).
+                // A virtual surface's cell lights V_Δ only where the paths are tested: the light
+                // it passes on without the light it blocks made the real surfaces beside it
+                // too bright (cornell-va's green wall beside the tall block, ×1.05 of the answer).
+                var seen = select(lights, 0u, !tested && (lights & VPL_CELL) != 0u);
+                if (blocked_here) {
                     seen = select(0u, VPL_MU | VPL_DELTA_HIDDEN, (lights & VPL_MU) != 0u);
                 }
                 bounce_light(at, seen, &c);
@@ -240,7 +277,7 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
         partials[at + 5u] = r.b2;
         partials[at + 6u] = r.rgb8;
     }
-    if (!bounce) { return; }
+    if (!bounce || !read) { return; }
     partials[at + 7u] = c.delta_r;
     partials[at + 8u] = c.delta_g;
     partials[at + 9u] = c.delta_b;
@@ -254,9 +291,11 @@ fn gather_sum(@builtin(global_invocation_id) id: vec3u) {
     let size = gather_info.size.xyz;
     if (any(id >= size)) { return; }
     let in_volume = id + gather_info.chunks_first.yzw;
-    // V_ρ's cells, and with the bounce light only the cells the pixels read (of either).
+    // V_ρ's cells, and with the bounce light only the cells the pixels read (of either; all
+    // of V_ρ's beside a virtual surface with the virtual surfaces' bounce, as `gather`).
     let read = bounce_propagated() || block_read(id / 4u, (size + 3u) / 4u);
-    let rho = read && all(in_volume >= gather_info.rho_first.xyz) && all(in_volume < gather_info.rho_end.xyz);
+    let rho = (read || block_near_virtual(id / 4u, (size + 3u) / 4u)) && all(in_volume >= gather_info.rho_first.xyz)
+        && all(in_volume < gather_info.rho_end.xyz);
     let bounce = read && !bounce_propagated();
     if (!rho && !bounce) { return; }
     let h = cell_side();
