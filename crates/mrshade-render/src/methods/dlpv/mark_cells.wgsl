@@ -22,22 +22,9 @@ fn mark_cells(@builtin(global_invocation_id) id: vec3u) {
     let p = world_from_pixel(frame, vec2f(q) + 0.5, textureLoad(gbuffer_depth_motion, q, 0).x);
     let n = textureLoad(gbuffer_normal_roughness, q, 0).xyz;
     let x = cell_coords(p + 0.5 * cell_side() * n) - 0.5;
-    // The eight cells read lie in one block along an axis or straddle two: each block once,
-    // and written only if not yet flagged (a million pixels storing to a few hundred words
-    // wait on each other).
-    let last = vec3i(i32(params.info.x) - 1);
+    // The eight cells read lie in one block along an axis or straddle two.
     let base = vec3i(floor(x));
     // Outside the volume the merge reads nothing.
-    if (any(base + 1 < vec3i(0)) || any(base > last)) { return; }
-    let lo = clamp(base, vec3i(0), last) / 4;
-    let hi = clamp(base + 1, vec3i(0), last) / 4;
-    let blocks = i32(params.info.x / 4u);
-    for (var bz = lo.z; bz <= hi.z; bz++) {
-        for (var by = lo.y; by <= hi.y; by++) {
-            for (var bx = lo.x; bx <= hi.x; bx++) {
-                let i = (bz * blocks + by) * blocks + bx;
-                if ((blocks_read[i] & BLOCK_READ) == 0u) { blocks_read[i] = BLOCK_READ; }
-            }
-        }
-    }
+    if (any(base + 1 < vec3i(0)) || any(base > vec3i(i32(params.info.x) - 1))) { return; }
+    flag_blocks(base, base + 1, BLOCK_READ);
 }

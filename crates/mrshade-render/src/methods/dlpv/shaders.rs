@@ -50,13 +50,19 @@ pub const VPL_AGGREGATE_SHADER: &str = wgsl!(
     "rsm_pair.wgsl",
     "vpl.wgsl",
     "volume_read.wgsl",
+    "flag_blocks.wgsl",
     "vpl_aggregate.wgsl",
     "vpl_photo.wgsl",
 );
 
 /// The blocks of cells the pixels read (with the bounce light gathered).
-pub const VPL_MARK_SHADER: &str =
-    wgsl!("../../../shaders/lib/frame.wgsl", "../../../shaders/lib/gbuffer.wgsl", "volume.wgsl", "mark_cells.wgsl",);
+pub const VPL_MARK_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/gbuffer.wgsl",
+    "volume.wgsl",
+    "flag_blocks.wgsl",
+    "mark_cells.wgsl",
+);
 
 /// The gather of the VPLs' light into the cells (entry points `gather` and `gather_sum`).
 pub const VPL_GATHER_SHADER: &str = wgsl!(

@@ -147,26 +147,9 @@ fn cell_vpls(@builtin(global_invocation_id) id: vec3u) {
     }
     planes[2u * i] = plane;
     planes[2u * i + 1u] = plane_albedo;
-    if (texels > 0.0) { flag_blocks_near(vec3i(c)); }
-}
-
-// Flags the blocks of the cells within one of cell `c` (the cells V_ρ is read from at its
-// surface): the gather sums V_ρ only in blocks a pixel reads or these. Every invocation that
-// writes a word writes the same bits (BLOCK_READ was set by an earlier pass).
-fn flag_blocks_near(c: vec3i) {
-    let last = vec3i(i32(params.info.x) - 1);
-    let lo = clamp(c - 1, vec3i(0), last) / 4;
-    let hi = clamp(c + 1, vec3i(0), last) / 4;
-    let blocks = i32(params.info.x / 4u);
-    for (var bz = lo.z; bz <= hi.z; bz++) {
-        for (var by = lo.y; by <= hi.y; by++) {
-            for (var bx = lo.x; bx <= hi.x; bx++) {
-                let k = (bz * blocks + by) * blocks + bx;
-                let v = blocks_read[k];
-                if ((v & BLOCK_NEAR_VIRTUAL) == 0u) { blocks_read[k] = v | BLOCK_NEAR_VIRTUAL; }
-            }
-        }
-    }
+    // The blocks of the cells within one of it (those V_ρ is read from at its surface): the
+    // gather sums V_ρ only in blocks a pixel reads or these.
+    if (texels > 0.0) { flag_blocks(vec3i(c) - 1, vec3i(c) + 1, BLOCK_NEAR_VIRTUAL); }
 }
 
 // Appends the VPL of `sum`, lighting the volumes of `lights` (VPL_* bits), if it holds any

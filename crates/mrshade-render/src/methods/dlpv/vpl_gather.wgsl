@@ -163,15 +163,16 @@ fn partial_vectors() -> u32 { return select(RHO_VECTORS + 6u, RHO_VECTORS, bounc
 // Whether block `block` of 4³ cells (of the gathered box) holds a cell the merge reads: with
 // the bounce light gathered the box is the whole volume and `mark_cells` (mark_cells.wgsl) has
 // flagged the blocks.
-fn block_read(block: vec3u, blocks: vec3u) -> bool {
-    return (blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] & BLOCK_READ) != 0u;
-}
+fn block_read(block: vec3u, blocks: vec3u) -> bool { return (block_bits(block, blocks) & BLOCK_READ) != 0u; }
 
 // Whether block `block` holds or borders a virtual surface's cell (`BLOCK_NEAR_VIRTUAL`, with
 // `dlpv.virtual_bounce`, when the gathered box is the whole volume).
 fn block_near_virtual(block: vec3u, blocks: vec3u) -> bool {
-    return virtual_bounce()
-        && (blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] & BLOCK_NEAR_VIRTUAL) != 0u;
+    return virtual_bounce() && (block_bits(block, blocks) & BLOCK_NEAR_VIRTUAL) != 0u;
+}
+
+fn block_bits(block: vec3u, blocks: vec3u) -> u32 {
+    return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x];
 }
 
 fn cells_gathered() -> u32 { return gather_info.size.x * gather_info.size.y * gather_info.size.z; }
