@@ -33,6 +33,7 @@
 //! (0.5–0.9 ms more) in every cell.
 
 mod lights;
+mod params;
 mod propagation;
 mod shaders;
 mod vpl_gather;
@@ -45,72 +46,18 @@ use crate::limits::Fit;
 use crate::raster::Rasterizer;
 use crate::scene_gpu::GpuProbe;
 use anyhow::Result;
-use bytemuck::{Pod, Zeroable};
-use glam::{UVec4, Vec3, Vec4};
+use glam::{UVec4, Vec3};
 use lights::{InjectSet, power_bound};
-use mrshade_core::settings::{DlpvSettings, DlpvSplat, DlpvTransport, RenderSettings, ShadowSettings};
+use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
+use params::*;
+pub use params::{DlpvParams, SCRATCH_CELL_BYTES};
 pub use propagation::{propagate_layout, sum_updates};
 pub use shaders::*;
 use vpl_gather::{MapSet, VplGather, VplPhoto};
 use wgpu::util::DeviceExt;
-
-/// Mirrors `DlpvParams` in volume.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct DlpvParams {
-    /// xyz: world position of the lower corner; w: cell side (m).
-    pub origin: Vec4,
-    /// Cells per side, cells in all, propagation step (0: seeding, injection), splat (0: into
-    /// the cell, 1: trilinear).
-    pub info: UVec4,
-    /// Fixed-point units per watt; the angular radius (rad) below which a probe light shadows
-    /// real surfaces through its maps (`dlpv.sharp_probe_shadows_deg`), unused…
-    pub scale: Vec4,
-    /// Propagation steps per source.
-    pub steps: UVec4,
-    /// x: 1 when V_ρ is gathered from VPLs (the propagation writes the accumulated volumes
-    /// from the second on); y: 1 when the photo's light is in it (`dlpv.photo_bounce`); z: bit
-    /// 0 when the probe's shadows on real surfaces are soft (`dlpv.soft_probe_shadows`), bit 1
-    /// on virtual ones (`dlpv.soft_virtual_probe_shadows`; volume.wgsl `SOFT_*`).
-    pub gathered: UVec4,
-}
-
-impl DlpvParams {
-    /// Whether the virtual content stands in the gathered bounce light's paths in every cell
-    /// (`dlpv.bounce_visibility`; volume.wgsl `bounce_visible`).
-    pub fn bounce_visible(&self) -> bool {
-        self.gathered.w & 2 != 0
-    }
-
-    /// Whether the virtual surfaces pass on their light and stand in its way in V_ρ's cells
-    /// (`dlpv.virtual_bounce`; volume.wgsl `virtual_bounce`).
-    pub fn virtual_bounce(&self) -> bool {
-        self.gathered.w & 4 != 0
-    }
-}
-
-/// The sources of injection, in the order of `SOURCE_*` in volume.wgsl.
-const SOURCES: u32 = 4;
-const SOURCE_RHO: usize = 0;
-const SOURCE_INDIRECT: usize = 1;
-const SOURCE_DIRECT: usize = 2;
-const SOURCE_MU: usize = 3;
-/// Accumulated volumes: V_ρ, V_Δ (both changes), V_μ.
-const VOLUMES: u64 = 3;
-
-/// Bytes of one cell of one float volume: four coefficients × three channels.
-const CELL_BYTES: u64 = 48;
-/// Bytes of one cell of V_ρ's band 2 (volume.wgsl `rho_band2`): four vec4f.
-const BAND2_CELL_BYTES: u64 = 64;
-/// Bytes of one cell of one source's scratch volume: four half-float coefficients × three
-/// channels (propagate.wgsl).
-pub const SCRATCH_CELL_BYTES: u64 = 24;
-/// Fixed-point headroom: all injected flux of a source, times the largest coefficient
-/// magnitude, stays below 2³¹ units.
-const FIXED_POINT_RANGE: f32 = (1u32 << 29) as f32;
 
 /// The method's passes and volumes.
 pub struct DlpvMethod {
@@ -157,12 +104,6 @@ pub struct DlpvMethod {
 /// Builds the method (the registry's `build`).
 pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DlpvMethod::new(inputs))
-}
-
-/// The volumes `settings` gathers from VPLs (vpl_gather.rs `GATHERED_*` bits; 0: none).
-fn gathered_volumes(settings: &DlpvSettings) -> u32 {
-    let bit = |transport, bit| if transport == DlpvTransport::Gathered { bit } else { 0 };
-    bit(settings.virtual_light, vpl_gather::GATHERED_RHO) | bit(settings.bounce_light, vpl_gather::GATHERED_BOUNCE)
 }
 
 /// Halves the maps until every set's texels fit one buffer binding.
@@ -233,10 +174,6 @@ impl DlpvMethod {
         let settings = &session.settings.dlpv;
         let res = settings.resolution;
         let cells = res * res * res;
-        let splat = match settings.splat {
-            DlpvSplat::Cell => 0,
-            DlpvSplat::Trilinear => 1,
-        };
         let cs = wgpu::ShaderStages::COMPUTE;
         let scene_box = session.scene.bounds();
         let (origin, side) = place(scene.geometry.virtual_box(), scene_box, settings.extent);
@@ -249,40 +186,11 @@ impl DlpvMethod {
         };
         let shadows = &session.settings.shadows;
         let scene_radius = bounding_radius(scene_box);
-        let gathered = gathered_volumes(settings);
-        let rho_gathered = gathered & vpl_gather::GATHERED_RHO != 0;
-        let bounce_gathered = gathered & vpl_gather::GATHERED_BOUNCE != 0;
+        let gathered = params::gathered_volumes(settings);
         let probe_only: Vec<_> = probe_lights.iter().map(|(light, _)| light.clone()).collect();
         let bound =
             power_bound(&session.scene.lights, scene_radius) + power_bound(&probe_only, bounding_radius(Some(cube)));
-        let params = DlpvParams {
-            origin: origin.extend(side / res as f32),
-            info: UVec4::new(res, cells, 0, splat),
-            scale: Vec4::new(
-                FIXED_POINT_RANGE / bound.max(1e-12),
-                settings.sharp_probe_shadows_deg.to_radians(),
-                0.0,
-                0.0,
-            ),
-            steps: {
-                // A gathered volume's sources are neither injected nor propagated.
-                let propagated = |gathered: bool| if gathered { 0 } else { settings.propagation_steps };
-                let mut steps = [0; SOURCES as usize];
-                steps[SOURCE_RHO] = propagated(rho_gathered);
-                steps[SOURCE_MU] = propagated(bounce_gathered);
-                steps[SOURCE_INDIRECT] = propagated(bounce_gathered);
-                steps[SOURCE_DIRECT] = settings.direct_steps;
-                UVec4::from_array(steps)
-            },
-            gathered: UVec4::new(
-                rho_gathered as u32,
-                (gathered != 0 && settings.photo_bounce) as u32,
-                settings.soft_probe_shadows as u32 | (settings.soft_virtual_probe_shadows as u32) << 1,
-                bounce_gathered as u32
-                    | ((bounce_gathered && settings.bounce_visibility) as u32) << 1
-                    | ((bounce_gathered && settings.virtual_bounce) as u32) << 2,
-            ),
-        };
+        let params = DlpvParams::new(settings, origin, side, bound);
         let injected = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/injected"),
             size: SOURCES as u64 * cells as u64 * CELL_BYTES,
@@ -297,14 +205,8 @@ impl DlpvMethod {
             })
         };
         let max_steps = params.steps.max_element();
-        let step_params: Vec<wgpu::Buffer> = (0..=max_steps)
-            .map(|step| {
-                uniform(
-                    &format!("dlpv/params_step{step}"),
-                    &DlpvParams { info: UVec4::new(res, cells, step, splat), ..params },
-                )
-            })
-            .collect();
+        let step_params: Vec<wgpu::Buffer> =
+            (0..=max_steps).map(|step| uniform(&format!("dlpv/params_step{step}"), &params.at_step(step))).collect();
 
         let inject_layout = bind::layout(
             device,
