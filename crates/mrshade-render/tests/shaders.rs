@@ -53,6 +53,7 @@ const MODULES: &[(&str, &str)] = &[
     ("dlpv/vpl_aggregate", dlpv::VPL_AGGREGATE_SHADER),
     ("dlpv/mark_cells", dlpv::VPL_MARK_SHADER),
     ("dlpv/vpl_gather", dlpv::VPL_GATHER_SHADER),
+    ("dlpv/visibility_maps", dlpv::VISIBILITY_MAPS_SHADER),
     ("probe_maps/near", mrshade_render::methods::probe_maps::NEAR_SHADER),
 ];
 
@@ -99,6 +100,7 @@ fn dlpv_params_match() {
         dlpv::VPL_AGGREGATE_SHADER,
         dlpv::VPL_MARK_SHADER,
         dlpv::VPL_GATHER_SHADER,
+        dlpv::VISIBILITY_MAPS_SHADER,
     ] {
         assert_layout(
             source,

@@ -36,6 +36,7 @@ mod lights;
 mod params;
 mod propagation;
 mod shaders;
+mod visibility;
 mod vpl_gather;
 
 use super::around::place;
@@ -152,6 +153,14 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
                     cells,
                     gathered,
                 ),
+            },
+        ),
+        (
+            "dlpv visibility maps of V_ρ's parts (with dlpv.virtual_bounce)",
+            if gathered_volumes(d) & vpl_gather::GATHERED_BOUNCE != 0 && d.virtual_bounce {
+                visibility::bytes(d.resolution, d.extent)
+            } else {
+                0
             },
         ),
     ]
@@ -344,6 +353,7 @@ impl DlpvMethod {
                 settings.gather_block,
                 scene.geometry.virtual_box(),
                 &params,
+                settings.extent,
             )
         });
         drop(map_sets);

@@ -69,7 +69,20 @@ pub const VPL_GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/sh.wgsl",
     "../../../shaders/lib/box_span.wgsl",
+    "../../../shaders/lib/octahedral.wgsl",
     "volume.wgsl",
     "vpl.wgsl",
+    "visibility.wgsl",
     "vpl_gather.wgsl"
+);
+
+/// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
+pub const VISIBILITY_MAPS_SHADER: &str = wgsl!(
+    "../../../shaders/lib/frame.wgsl",
+    "../../../shaders/lib/box_span.wgsl",
+    "../../../shaders/lib/octahedral.wgsl",
+    "volume.wgsl",
+    "vpl.wgsl",
+    "visibility.wgsl",
+    "visibility_maps.wgsl",
 );

@@ -28,10 +28,12 @@ struct GatherVpl {
 struct GatherInfo {
     // x: chunks of the VPLs; yzw: the first cell gathered
     chunks_first: vec4u,
-    // xyz: cells gathered along each axis; w: unused (which volumes are gathered:
-    // volume.wgsl `rho_propagated`, `bounce_propagated`)
+    // xyz: cells gathered along each axis (which volumes are gathered: volume.wgsl
+    // `rho_propagated`, `bounce_propagated`); w: parts with visibility maps at most along each
+    // axis (visibility.wgsl)
     size: vec4u,
-    // xyz: the first cell of V_ρ's, those virtual pixels read; w: unused
+    // xyz: the first cell of V_ρ's, those virtual pixels read; w: the index of the first of the
+    // virtual surfaces' cells' VPLs (`cell_vpls`, after room for all the maps' and the photo's)
     rho_first: vec4u,
     // xyz: one past its last cell; w: unused
     rho_end: vec4u,

@@ -14,7 +14,9 @@
 @group(0) @binding(4) var<storage, read_write> vpls: array<GatherVpl>;
 // The maps' side, pairs, unused, texels (or pixels) per block side.
 @group(0) @binding(5) var<uniform> gather_info: vec4u;
-@group(0) @binding(6) var<storage, read_write> vpl_count: atomic<u32>;
+// The maps' and the photo's VPLs appended, then the cells' (`cell_vpls`, from
+// `cells_gathered.rho_first.w` on).
+@group(0) @binding(6) var<storage, read_write> vpl_count: array<atomic<u32>, 2>;
 @group(0) @binding(7) var<uniform> cells_gathered: GatherInfo;
 // Per cell two vec4f, written by `cell_vpls`: the mean plane of the virtual surfaces the maps
 // see in it (unit normal, ⟨n, p⟩; zero where none) and their diffuse albedo (vpl_gather.wgsl
@@ -143,7 +145,7 @@ fn cell_vpls(@builtin(global_invocation_id) id: vec3u) {
         vpl.position = vec4f(p, area);
         vpl.normal = vec4f(s.n, f32(VPL_RHO | VPL_DELTA | VPL_CELL));
         vpl.flux = vec4f(flux, 0.0);
-        vpls[atomicAdd(&vpl_count, 1u)] = vpl;
+        vpls[cells_gathered.rho_first.w + atomicAdd(&vpl_count[1], 1u)] = vpl;
     }
     planes[2u * i] = plane;
     planes[2u * i + 1u] = plane_albedo;
@@ -164,7 +166,7 @@ fn append(sum: Sum, lights: u32) {
     let centre = params.origin.xyz + h * vec3f(cells_gathered.chunks_first.yzw) + half;
     let n = vpl.normal.xyz;
     if (dot(n, centre - vpl.position.xyz) + dot(abs(n), half) <= 0.0) { return; }
-    vpls[atomicAdd(&vpl_count, 1u)] = vpl;
+    vpls[atomicAdd(&vpl_count[0], 1u)] = vpl;
 }
 
 // Texels (or pixels) summed: Σ reflected flux (rgb) and area (w); Σ w·position (xyz) and

@@ -6,6 +6,7 @@
 //! (vpl_gather.wgsl), in place of the propagation.
 
 use super::DlpvParams;
+use super::visibility::{VisibilityMaps, map_room};
 use super::shaders::{VPL_AGGREGATE_SHADER, VPL_GATHER_SHADER, VPL_MARK_SHADER};
 use bytemuck::{Pod, Zeroable};
 use glam::{IVec3, UVec3, UVec4, Vec3, Vec4};
@@ -29,22 +30,31 @@ struct GatherVpl {
 struct GatherInfo {
     /// x: chunks of the VPLs; yzw: the first cell gathered.
     chunks_first: UVec4,
-    /// xyz: cells gathered along each axis; w: unused.
+    /// xyz: cells gathered along each axis; w: parts with visibility maps at most along each
+    /// axis (visibility.rs `map_room`).
     size: UVec4,
-    /// xyz: the first cell of V_ρ's (`rho_cells`); w: unused.
+    /// xyz: the first cell of V_ρ's (`rho_cells`); w: the index of the first of the virtual
+    /// surfaces' cells' VPLs (vpl_aggregate.wgsl `cell_vpls`).
     rho_first: UVec4,
     /// xyz: one past its last cell; w: unused.
     rho_end: UVec4,
 }
 
 impl GatherInfo {
-    fn new(chunks: u32, virtual_box: Option<(Vec3, Vec3)>, params: &DlpvParams, gathered: u32) -> Self {
+    /// `room`: parts with visibility maps along each axis; `cell_base`: the first cell VPL.
+    fn new(
+        chunks: u32,
+        virtual_box: Option<(Vec3, Vec3)>,
+        params: &DlpvParams,
+        gathered: u32,
+        [room, cell_base]: [u32; 2],
+    ) -> Self {
         let (first, size) = cells_read(virtual_box, params, gathered);
         let (rho_first, rho_size) = rho_cells(virtual_box, params);
         Self {
             chunks_first: UVec4::from((chunks, first)),
-            size: size.extend(0),
-            rho_first: rho_first.extend(0),
+            size: size.extend(room),
+            rho_first: rho_first.extend(cell_base),
             rho_end: (rho_first + rho_size).extend(0),
         }
     }
@@ -186,6 +196,11 @@ pub(super) struct VplGather {
     size: UVec3,
     /// The volumes gathered (`GATHERED_*`).
     gathered: u32,
+    /// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
+    visibility: Option<VisibilityMaps>,
+    /// Their parts along each axis at most (`map_room`; 0 without them), and the index of the
+    /// first cell VPL (`GatherInfo`).
+    maps_room: [u32; 2],
 }
 
 /// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
@@ -197,6 +212,8 @@ const PARTIAL_BYTES: u64 = 48 << 20;
 impl VplGather {
     /// GPU timing label of the maps' and the photo's VPLs.
     pub const VPLS_LABEL: &'static str = "dlpv-vpls";
+    /// GPU timing label of the visibility maps (with `dlpv.virtual_bounce`).
+    pub const VISIBILITY_LABEL: &'static str = "dlpv-visibility";
     /// GPU timing label of the gather into V_ρ's cells.
     pub const LABEL: &'static str = "dlpv-vpl-gather";
 
@@ -218,6 +235,7 @@ impl VplGather {
         block: u32,
         virtual_box: Option<(Vec3, Vec3)>,
         values: &DlpvParams,
+        extent: f32,
     ) -> Self {
         let cs = wgpu::ShaderStages::COMPUTE;
         let sides: Vec<u32> = sets.iter().map(|s| block.min(s.resolution)).collect();
@@ -235,7 +253,10 @@ impl VplGather {
         let total = map_vpls + tiles[0] * tiles[1] + cell_vpls;
         let partial = partial_cell_bytes(gathered);
         let chunks = chunks(cells, partial);
-        let info = GatherInfo::new(chunks, virtual_box, values, gathered);
+        let room = if virtual_bounce { map_room(values.info.x, extent) } else { 0 };
+        // The cells' VPLs after room for every map's and the photo's.
+        let maps_room = [room, map_vpls + tiles[0] * tiles[1]];
+        let info = GatherInfo::new(chunks, virtual_box, values, gathered, maps_room);
         let size = info.size.truncate();
         let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dlpv/vpl_gather_info"),
@@ -408,8 +429,10 @@ impl VplGather {
                 bind::storage(7, cs),
                 bind::storage_rw(8, cs),
                 bind::storage(9, cs),
+                bind::storage(10, cs),
             ],
         );
+        let visibility = virtual_bounce.then(|| VisibilityMaps::new(device, params, &gather_info, &planes, &blocks_read, room));
         let gather = compute_pipeline_entry(device, "dlpv/vpl_gather", VPL_GATHER_SHADER, "gather", &[&gather_layout]);
         let gather_sum =
             compute_pipeline_entry(device, "dlpv/vpl_gather_sum", VPL_GATHER_SHADER, "gather_sum", &[&gather_layout]);
@@ -435,6 +458,7 @@ impl VplGather {
                 blocks_read.as_entire_binding(),
                 rho_band2.as_entire_binding(),
                 planes.as_entire_binding(),
+                visibility.as_ref().map_or(&planes, |v| &v.maps).as_entire_binding(),
             ],
         );
         Self {
@@ -456,12 +480,14 @@ impl VplGather {
             chunks,
             size,
             gathered,
+            visibility,
+            maps_room,
         }
     }
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
-        let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered);
+        let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered, self.maps_room);
         self.size = info.size.truncate();
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
@@ -506,6 +532,9 @@ impl VplGather {
 
     /// Writes the gathered volumes from the VPLs (after the propagation, which leaves them).
     pub fn record_gather_pass(&self, rec: &mut Recorder) {
+        if let Some(visibility) = &self.visibility {
+            rec.compute(Self::VISIBILITY_LABEL, |pass| visibility.record(pass));
+        }
         rec.compute(Self::LABEL, |pass| self.record_gather(pass));
     }
 

@@ -19,7 +19,8 @@
 // direct change, which is not propagated, and the gathered indirect one).
 @group(0) @binding(2) var<storage, read_write> volumes: array<vec4f>;
 @group(0) @binding(3) var<uniform> gather_info: GatherInfo;
-@group(0) @binding(4) var<storage, read> vpl_count: u32;
+// The maps' and the photo's VPLs, the virtual surfaces' cells' (from `rho_first.w` on).
+@group(0) @binding(4) var<storage, read> vpl_count: array<u32, 2>;
 // Per chunk, per cell gathered: its sums over the chunk, `RHO_VECTORS` of V_ρ (`RhoSums`),
 // then three of V_Δ and three of V_μ (a channel each; `BounceSums`).
 @group(0) @binding(5) var<storage, read_write> partials: array<vec4f>;
@@ -33,33 +34,38 @@
 // (vpl_aggregate.wgsl `cell_vpls`), with `virtual_bounce`.
 @group(0) @binding(9) var<storage, read> planes: array<vec4f>;
 
-// Whether the path from `a` (a VPL) to `x` (a cell's centre) crosses a virtual surface: at
-// every half cell along it inside V_ρ's box (where the virtual surfaces lie), whether the
-// points half a cell before and after lie on either side of the plane of the cell there
-// (`planes`). A path that only grazes a surface's cell (along a face, over a contact) crosses
-// no plane: marking the cells alone blocked it, and a floor beside a block lost its light.
-// (Every cell instead missed crossings: with `virtual_bounce` the light of the floor behind a
-// cube came through it, test `a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it`.)
-// The first and the last cell and a half are left out: a VPL on a virtual surface leaves its
-// own plane, and the cells the merge reads beside a face lie partly behind it.
+// Per part of V_ρ's blocks, its visibility map (visibility_maps.wgsl), with
+// `virtual_bounce`.
+@group(0) @binding(10) var<storage, read> visibility: array<u32>;
+
+// Whether the path from `a` (a VPL) to `x` (a cell's centre, in cell coordinates) crosses a
+// virtual surface (visibility.wgsl `first_crossing`). The first and the last cell and a half
+// are left out: a VPL on a virtual surface leaves its own plane, and the cells the merge reads
+// beside a face lie partly behind it.
 fn blocked(a: vec3f, x: vec3f) -> bool {
     let ca = cell_coords(a);
-    let d = cell_coords(x) - ca;
+    let d = x - ca;
     let len = length(d);
     if (len < 3.0) { return false; }
-    let dir = d / len;
-    let span = box_span(ca, dir, vec3f(gather_info.rho_first.xyz), vec3f(gather_info.rho_end.xyz), len - 1.5);
-    let h = cell_side();
-    for (var t = max(span.x, 1.5); t <= span.y; t += 0.5) {
-        let c = vec3i(floor(ca + t * dir));
-        if (!cell_inside(c)) { continue; }
-        let plane = planes[2u * cell_index(c)];
-        if (dot(plane.xyz, plane.xyz) < 0.25) { continue; }
-        let before = params.origin.xyz + (ca + (t - 0.5) * dir) * h;
-        let after = params.origin.xyz + (ca + (t + 0.5) * dir) * h;
-        if ((dot(plane.xyz, before) - plane.w) * (dot(plane.xyz, after) - plane.w) < 0.0) { return true; }
-    }
-    return false;
+    return first_crossing(ca, d / len, 1.5, len - 1.5) < 1e29;
+}
+
+// The same from part `part`'s centre to `a`, read from the part's map where it has one (the
+// distance to the first crossing toward the texel of `a`'s direction): 0.1–0.2 ms on cornell
+// at 1080p on the H100 instead of 0.6 (docs/benchmarks.md, 2026-12-06).
+const NEAR_MARCH: f32 = 8.0;
+fn part_blocked(part: vec3u, a: vec3f) -> bool {
+    let centre = part_centre(part);
+    let m = part_map(part);
+    if (m == 0xffffffffu) { return blocked(a, centre); }
+    let d = cell_coords(a) - centre;
+    let len = length(d);
+    if (len < 3.0) { return false; }
+    if (len < NEAR_MARCH) { return blocked(a, centre); }
+    let texel = min(vec2u(octahedral_uv(d / len) * f32(MAP_SIDE)), vec2u(MAP_SIDE - 1u));
+    let i = texel.y * MAP_SIDE + texel.x;
+    let q = (visibility[m * MAP_WORDS + i / 2u] >> (16u * (i & 1u))) & 0xffffu;
+    return q != NO_CROSSING && f32(q) / MAP_UNITS <= len - 1.5;
 }
 
 const TILE: u32 = 64u;
@@ -77,7 +83,6 @@ var<workgroup> tile_blocked: array<u32, 64>;
 // (lavapipe) 0.1348 / 0.1362 / 0.1384. Once per workgroup in V_ρ's cells, where the cells a
 // face's pixels read lie within a part of it, left the light of the far side of a block on
 // its faces (cornell 0.1655 against 0.1320).
-const VISIBILITY_PART: u32 = 2u;
 const VISIBILITY_PARTS: u32 = 8u;
 
 // Whether a VPL of `lights` at `vpl` (a virtual surface's cell: `VPL_CELL`) lights V_ρ at
@@ -202,8 +207,8 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     let first_cell = gather_info.chunks_first.yzw + block * 4u;
     let x = params.origin.xyz + (vec3f(id + gather_info.chunks_first.yzw) + 0.5) * cell_side();
     let bounce = !bounce_propagated();
-    let local = vec3u(t % 4u, (t / 4u) % 4u, t / 16u) / VISIBILITY_PART;
-    let parts = 4u / VISIBILITY_PART;
+    let local = vec3u(t % 4u, (t / 4u) % 4u, t / 16u) / PART_CELLS;
+    let parts = 4u / PART_CELLS;
     let my_part = (local.z * parts + local.y) * parts + local.x;
     let rho = !rho_propagated() && all(first_cell < gather_info.rho_end.xyz)
         && all(first_cell + 4u > gather_info.rho_first.xyz);
@@ -212,7 +217,11 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     // their light too (cornell's cube lights the tall block's foot with its side). In all of
     // V_ρ's box, the empty cells between the surfaces cost as much.
     let read = !bounce || block_read(block, blocks);
-    if (t == 0u) { shared_count = select(0u, vpl_count, read || (rho && block_near_virtual(block, blocks))); }
+    // The cells' VPLs light V_ρ, and V_Δ where the paths are tested (`tested`): blocks of
+    // neither leave them out.
+    let maps = vpl_count[0];
+    let all_vpls = select(maps, maps + vpl_count[1], rho || bounce_visible());
+    if (t == 0u) { shared_count = select(0u, all_vpls, read || (rho && block_near_virtual(block, blocks))); }
     let count = workgroupUniformLoad(&shared_count);
     if (count == 0u) { return; }
     // The paths are tested in V_ρ's cells with the virtual surfaces' bounce (also where no
@@ -223,7 +232,8 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
     var r: RhoSums;
     var c: BounceSums;
     for (var first = range.x; first < range.y; first += TILE) {
-        if (first + t < range.y) { tile[t] = vpls[first + t]; }
+        let i = first + t;
+        if (i < range.y) { tile[t] = vpls[select(gather_info.rho_first.w + i - maps, i, i < maps)]; }
         workgroupBarrier();
         // Invocation t tests VPL t of the tile against the parts' centres (the test is
         // uniform: the barrier stays in uniform control flow, and off it costs nothing).
@@ -233,9 +243,7 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
                 var bits = 0u;
                 for (var k = 0u; k < VISIBILITY_PARTS; k++) {
                     let part = vec3u(k % parts, (k / parts) % parts, k / (parts * parts));
-                    let centre = params.origin.xyz
-                        + (vec3f(first_cell + part * VISIBILITY_PART) + 0.5 * f32(VISIBILITY_PART)) * cell_side();
-                    if (blocked(source, centre)) { bits |= 1u << k; }
+                    if (part_blocked(first_cell / PART_CELLS + part, source)) { bits |= 1u << k; }
                 }
                 tile_blocked[t] = bits;
             }
