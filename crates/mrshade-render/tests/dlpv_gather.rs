@@ -11,7 +11,7 @@ use common::{Setup, rel};
 use glam::{Vec3, Vec4};
 use mrshade_gpu::readback::read_buffer;
 use mrshade_render::Renderer;
-use mrshade_render::methods::dlpv::DlpvMethod;
+use mrshade_render::methods::dlpv::{self, DlpvMethod};
 use serde_json::json;
 
 /// The accumulated volumes (merge order).
@@ -397,4 +397,67 @@ fn a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it() {
     assert!(rel(with, expected) < 0.15, "with the virtual bounce {with} against {expected}");
     assert!(rel(with - first_frame, face_light) < 0.3, "the face's light {} against {face_light}", with - first_frame);
     assert!((with - expected).abs() < (without - expected).abs(), "{with} no nearer {expected} than {without}");
+}
+
+/// The point of [0, 1]² of unit direction `d` on the octahedral map (mirrors
+/// shaders/lib/octahedral.wgsl `octahedral_uv`).
+fn octahedral_uv(d: Vec3) -> glam::Vec2 {
+    let n = d / (d.x.abs() + d.y.abs() + d.z.abs());
+    let mut p = glam::Vec2::new(n.x, n.y);
+    if n.z < 0.0 {
+        let sign = glam::Vec2::new(if n.x >= 0.0 { 1.0 } else { -1.0 }, if n.y >= 0.0 { 1.0 } else { -1.0 });
+        p = (glam::Vec2::ONE - glam::Vec2::new(n.y.abs(), n.x.abs())) * sign;
+    }
+    p * 0.5 + 0.5
+}
+
+#[test]
+fn a_parts_visibility_map_holds_how_far_the_virtual_surfaces_lie() {
+    // One virtual 8 cm cube 4 cm over the floor, 32³ cells of 5 mm, with the virtual
+    // surfaces' bounce (visibility.wgsl): the part of 2³ cells whose centre lies three cells
+    // out of the cube's +x face, halfway up it. Toward −x its map's ray first crosses that
+    // face three cells on (at the half-cell steps of the march); toward +x, straight up, and
+    // steeply up past the cube's top edge it crosses none.
+    let centre = Vec3::new(0.0, 0.08, 0.0);
+    let mut setup = sun_and_cubes(&[centre.to_array()], "resolution = 32\nextent = 2.0\nvirtual_bounce = true\n");
+    // A dim sky whose lights' maps see every side of the cube (their planes).
+    setup.probe = Some([0.002; 3]);
+    setup.sky_only = true;
+    let (_dir, session) = setup.session();
+    let ctx = mrshade_testkit::gpu();
+    let mut renderer = Renderer::new(&ctx, &session).unwrap();
+    renderer.render_frames(&ctx, 1, |_| {}).unwrap();
+    let method: &DlpvMethod = renderer.method_as().unwrap();
+    let params = method.params();
+    let h = params.origin.w;
+    let cells = |p: Vec3| (p - params.origin.truncate()) / h;
+    let view = method.visibility_maps().expect("maps with dlpv.virtual_bounce");
+    let words = read_buffer(&ctx, view.maps).unwrap();
+    let texels = cast_slice::<u8, u16>(&words);
+    // Parts have their centres at odd cell coordinates.
+    let want = cells(centre + Vec3::new(0.04, 0.0, 0.0)) + Vec3::new(3.0, 0.0, 0.0);
+    let part = ((want - 1.0) / 2.0).round().as_uvec3();
+    let part_centre = part.as_vec3() * 2.0 + 1.0;
+    let p = part - view.first_part;
+    let map = ((p.z * view.room + p.y) * view.room + p.x) as usize;
+    let side = dlpv::MAP_SIDE;
+    let distance = |d: Vec3| -> Option<f32> {
+        let st = (octahedral_uv(d.normalize()) * side as f32).as_uvec2().min(glam::UVec2::splat(side - 1));
+        let q = texels[map * (side * side) as usize + (st.y * side + st.x) as usize];
+        (q != dlpv::NO_CROSSING).then(|| q as f32 / dlpv::MAP_UNITS)
+    };
+    let face = part_centre.x - (cells(centre).x + 0.04 / h);
+    let over_top = Vec3::new(-1.0, 3.0, 0.0);
+    eprintln!(
+        "part centre {part_centre} (cells; {face} from the +x face): −x {:?}, +x {:?}, +y {:?}, over the top {:?}",
+        distance(-Vec3::X),
+        distance(Vec3::X),
+        distance(Vec3::Y),
+        distance(over_top)
+    );
+    let near = distance(-Vec3::X).expect("the +x face toward −x");
+    assert!((near - face).abs() <= 0.5, "−x: {near} against {face}");
+    assert_eq!(distance(Vec3::X), None, "+x: nothing");
+    assert_eq!(distance(Vec3::Y), None, "+y: nothing");
+    assert_eq!(distance(over_top), None, "past the top edge: nothing");
 }

@@ -55,6 +55,7 @@ use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use params::*;
 pub use params::{DlpvParams, SCRATCH_CELL_BYTES};
+pub use visibility::{MAP_SIDE, MAP_UNITS, NO_CROSSING, VisibilityMapsView};
 pub use propagation::{propagate_layout, sum_updates};
 pub use shaders::*;
 use vpl_gather::{MapSet, VplGather, VplPhoto};
@@ -422,6 +423,11 @@ impl DlpvMethod {
             stale_photo: false,
             gather_again: false,
         }
+    }
+
+    /// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
+    pub fn visibility_maps(&self) -> Option<VisibilityMapsView<'_>> {
+        self.vpl_gather.as_ref().and_then(|g| g.visibility_maps())
     }
 
     /// The volumes' uniform (where the cube lies, the fixed-point scale).

@@ -7,8 +7,26 @@ use super::shaders::VISIBILITY_MAPS_SHADER;
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::compute_pipeline_entry;
 
-/// Mirrors `MAP_WORDS` in visibility.wgsl: 32² texels of two bytes.
-const MAP_WORDS: u32 = 512;
+/// Mirrors `MAP_SIDE` in visibility.wgsl: texels per side of a part's octahedral map.
+pub const MAP_SIDE: u32 = 32;
+/// Mirrors `MAP_WORDS`: two texels of two bytes a word.
+const MAP_WORDS: u32 = MAP_SIDE * MAP_SIDE / 2;
+/// Mirrors `MAP_UNITS`: a texel's distance in 1/`MAP_UNITS` cells.
+pub const MAP_UNITS: f32 = 32.0;
+/// Mirrors `NO_CROSSING`: no virtual surface before the edge of V_ρ's box.
+pub const NO_CROSSING: u16 = 0xffff;
+
+/// The maps as a test or a view reads them: map `(p.z · room + p.y) · room + p.x` is part
+/// `first_part + p`'s (a part: 2³ cells; visibility.wgsl `part_map`), texel (x, y) of it the
+/// two bytes `y · MAP_SIDE + x`.
+pub struct VisibilityMapsView<'a> {
+    /// The maps, two texels a `u32`.
+    pub maps: &'a wgpu::Buffer,
+    /// The part of the first map (in parts of the volume).
+    pub first_part: glam::UVec3,
+    /// Maps along each axis.
+    pub room: u32,
+}
 
 /// Parts a map is kept for along each axis: those of the blocks of 4³ cells that the virtual
 /// content's box and a cell around it can touch (`place` makes the volume `extent` times the
@@ -48,7 +66,8 @@ impl VisibilityMaps {
         let maps = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/visibility_maps"),
             size: (room as u64).pow(3) * MAP_WORDS as u64 * 4,
-            usage: wgpu::BufferUsages::STORAGE,
+            // Tests read them back.
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let layout = bind::layout(

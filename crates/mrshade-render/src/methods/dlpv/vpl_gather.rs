@@ -6,7 +6,7 @@
 //! (vpl_gather.wgsl), in place of the propagation.
 
 use super::DlpvParams;
-use super::visibility::{VisibilityMaps, map_room};
+use super::visibility::{VisibilityMaps, VisibilityMapsView, map_room};
 use super::shaders::{VPL_AGGREGATE_SHADER, VPL_GATHER_SHADER, VPL_MARK_SHADER};
 use bytemuck::{Pod, Zeroable};
 use glam::{IVec3, UVec3, UVec4, Vec3, Vec4};
@@ -196,6 +196,8 @@ pub(super) struct VplGather {
     size: UVec3,
     /// The volumes gathered (`GATHERED_*`).
     gathered: u32,
+    /// Where V_ρ's cells lie (what `info` holds).
+    rho_first: UVec3,
     /// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
     visibility: Option<VisibilityMaps>,
     /// Their parts along each axis at most (`map_room`; 0 without them), and the index of the
@@ -482,12 +484,20 @@ impl VplGather {
             gathered,
             visibility,
             maps_room,
+            rho_first: info.rho_first.truncate(),
         }
+    }
+
+    /// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
+    pub fn visibility_maps(&self) -> Option<VisibilityMapsView<'_>> {
+        let first_part = self.rho_first / 4 * 2;
+        self.visibility.as_ref().map(|v| VisibilityMapsView { maps: &v.maps, first_part, room: self.maps_room[0] })
     }
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
         let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered, self.maps_room);
+        self.rho_first = info.rho_first.truncate();
         self.size = info.size.truncate();
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
