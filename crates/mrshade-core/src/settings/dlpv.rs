@@ -124,16 +124,20 @@ pub struct DlpvSettings {
     /// on lavapipe, 640×480, off → on: cornell 0.1547 → 0.1282 (paste 0.135), desk-bunny
     /// 0.1066 → 0.1091 (0.114), desk-spot-real 0.1312 → 0.1295, desk-spot-virtual 0.1132 →
     /// 0.1110, and three Cornell variants 0.1395 / 0.1286 / 0.1391 → 0.1103 / 0.1135 / 0.1079
-    /// (paste 0.1146 / 0.1412 / 0.1371): below paste on all. Off by default: the paths' test
-    /// in V_ρ's cells costs the gather 0.56–0.83 ms more per moving 1080p frame on an H100
-    /// (cornell 1.38 → 2.10 ms, desk-spot-virtual 1.47 → 2.34), past the method's 1.5 ms: an
-    /// option for stills and comparisons (docs/benchmarks.md, 2026-12-06).
+    /// (paste 0.1146 / 0.1412 / 0.1371): below paste on all. The paths are tested against
+    /// per-part visibility maps (1 024 directions per 2³ cells, visibility.wgsl), which costs a
+    /// little of that: cornell 0.1310, desk-bunny 0.1100, desk-spot-real 0.1302,
+    /// desk-spot-virtual 0.1110, the variants 0.1130 / 0.1200 / 0.1114. Off by default: it
+    /// costs 0.17–0.33 ms more per moving 1080p frame on an H100 (cornell 1.39 → 1.59 ms,
+    /// desk-spot-virtual 1.47 → 1.80; a march per path instead of the maps, 2.10 and 2.34),
+    /// past the method's 1.5 ms: an option for stills and comparisons (docs/benchmarks.md,
+    /// 2026-12-06).
     pub virtual_bounce: bool,
     /// With `dlpv.virtual_bounce`: the paths' test in every cell, not only in V_ρ's; a VPL's
     /// light to a cell that crosses a virtual surface on the way also leaves V_Δ (the real
     /// bounce light the content blocks: the tall block's shadow of cornell's red wall on the
     /// back wall). It costs the gather 0.5–0.9 ms more per moving 1080p frame on an H100
-    /// (vpl_gather.wgsl `VISIBILITY_PART`), past the method's 1.5 ms: an option for stills and
+    /// (vpl_gather.wgsl `VISIBILITY_PARTS`), past the method's 1.5 ms: an option for stills and
     /// comparisons (docs/benchmarks.md, 2026-12-06). Default false.
     pub bounce_visibility: bool,
     /// Texels per side of the blocks of a map summed into one VPL of the gathered V_ρ (a

@@ -25,12 +25,12 @@
 //! cells and a block's lit top never reached the wall behind it. Only the probe's broad lights'
 //! direct change is then injected (and not propagated, `dlpv.direct_steps`). The gathered
 //! VPLs see no surface on their way (the propagation's geometry volume is gone with it) but
-//! the virtual ones, with `dlpv.virtual_bounce` (an option: it costs the gather 0.6–0.8 ms):
-//! the virtual surfaces mark their cells with their planes, each marked cell sends the light
-//! its surface takes from V_ρ on (one virtual surface lights another, and the real ones
-//! around), and in V_ρ's cells a path that crosses a marked plane carries nothing
-//! (vpl_aggregate.wgsl `cell_vpls`, vpl_gather.wgsl `blocked`); with `dlpv.bounce_visibility`
-//! (0.5–0.9 ms more) in every cell.
+//! the virtual ones, with `dlpv.virtual_bounce` (an option: it costs 0.17–0.33 ms): the
+//! virtual surfaces mark their cells with their planes, each marked cell sends the light its
+//! surface takes from V_ρ on (one virtual surface lights another, and the real ones around),
+//! and in V_ρ's cells a path that crosses a marked plane carries nothing (vpl_aggregate.wgsl
+//! `cell_vpls`; visibility.rs: per part of 2³ cells a map of how far the planes lie in every
+//! direction); with `dlpv.bounce_visibility` (0.5–0.9 ms more) in every cell.
 
 mod lights;
 mod params;
@@ -55,9 +55,9 @@ use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
 use params::*;
 pub use params::{DlpvParams, SCRATCH_CELL_BYTES};
-pub use visibility::{MAP_SIDE, MAP_UNITS, NO_CROSSING, VisibilityMapsView};
 pub use propagation::{propagate_layout, sum_updates};
 pub use shaders::*;
+pub use visibility::{MAP_SIDE, MAP_UNITS, NO_CROSSING, VisibilityMapsView};
 use vpl_gather::{MapSet, VplGather, VplPhoto};
 use wgpu::util::DeviceExt;
 

@@ -6,8 +6,8 @@
 //! (vpl_gather.wgsl), in place of the propagation.
 
 use super::DlpvParams;
-use super::visibility::{VisibilityMaps, VisibilityMapsView, map_room};
 use super::shaders::{VPL_AGGREGATE_SHADER, VPL_GATHER_SHADER, VPL_MARK_SHADER};
+use super::visibility::{VisibilityMaps, VisibilityMapsView, map_room};
 use bytemuck::{Pod, Zeroable};
 use glam::{IVec3, UVec3, UVec4, Vec3, Vec4};
 use mrshade_gpu::bind;
@@ -434,7 +434,8 @@ impl VplGather {
                 bind::storage(10, cs),
             ],
         );
-        let visibility = virtual_bounce.then(|| VisibilityMaps::new(device, params, &gather_info, &planes, &blocks_read, room));
+        let visibility =
+            virtual_bounce.then(|| VisibilityMaps::new(device, params, &gather_info, &planes, &blocks_read, room));
         let gather = compute_pipeline_entry(device, "dlpv/vpl_gather", VPL_GATHER_SHADER, "gather", &[&gather_layout]);
         let gather_sum =
             compute_pipeline_entry(device, "dlpv/vpl_gather_sum", VPL_GATHER_SHADER, "gather_sum", &[&gather_layout]);

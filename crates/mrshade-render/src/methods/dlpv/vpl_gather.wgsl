@@ -51,9 +51,12 @@ fn blocked(a: vec3f, x: vec3f) -> bool {
 }
 
 // The same from part `part`'s centre to `a`, read from the part's map where it has one (the
-// distance to the first crossing toward the texel of `a`'s direction): 0.1–0.2 ms on cornell
-// at 1080p on the H100 instead of 0.6 (docs/benchmarks.md, 2026-12-06).
-const NEAR_MARCH: f32 = 8.0;
+// distance to the first crossing toward the texel of `a`'s direction; the march where it has
+// none). At 1080p on the H100 (moving) the gather took 0.35 ms on cornell with the maps,
+// 0.94 with a march per VPL and part; cornell's region FLIP (lavapipe) 0.1310 against 0.1282.
+// Marching the paths shorter than 8 / 16 cells took it to 0.1304 / 0.1293 at 0.12 / 0.33 ms
+// more; the open share of the four texels around the direction, 0.1306 (docs/benchmarks.md,
+// 2026-12-06).
 fn part_blocked(part: vec3u, a: vec3f) -> bool {
     let centre = part_centre(part);
     let m = part_map(part);
@@ -61,7 +64,6 @@ fn part_blocked(part: vec3u, a: vec3f) -> bool {
     let d = cell_coords(a) - centre;
     let len = length(d);
     if (len < 3.0) { return false; }
-    if (len < NEAR_MARCH) { return blocked(a, centre); }
     let texel = min(vec2u(octahedral_uv(d / len) * f32(MAP_SIDE)), vec2u(MAP_SIDE - 1u));
     let i = texel.y * MAP_SIDE + texel.x;
     let q = (visibility[m * MAP_WORDS + i / 2u] >> (16u * (i & 1u))) & 0xffffu;
@@ -76,13 +78,14 @@ var<workgroup> shared_count: u32;
 var<workgroup> tile_blocked: array<u32, 64>;
 
 // The workgroup's 4³ cells are tested for the visibility of a VPL in parts of 2³ cells, at
-// their centres: in V_ρ's cells (`dlpv.virtual_bounce`), or in every cell
-// (`dlpv.bounce_visibility`). At 1080p on an H100 (moving, docs/benchmarks.md, 2026-12-06)
-// the gather over every cell took 2.2–2.9 ms more tested per cell (64 paths per VPL),
-// 0.5–0.9 ms per part of 2³ (8), 0.08–0.16 ms once per workgroup; cornell's region FLIP
-// (lavapipe) 0.1348 / 0.1362 / 0.1384. Once per workgroup in V_ρ's cells, where the cells a
-// face's pixels read lie within a part of it, left the light of the far side of a block on
-// its faces (cornell 0.1655 against 0.1320).
+// their centres (visibility.wgsl): in V_ρ's cells (`dlpv.virtual_bounce`; from the parts'
+// maps), or in every cell (`dlpv.bounce_visibility`; by a march outside V_ρ's blocks). At
+// 1080p on an H100 (moving, docs/benchmarks.md, 2026-12-06), marching, the gather over every
+// cell took 2.2–2.9 ms more tested per cell (64 paths per VPL), 0.5–0.9 ms per part of 2³
+// (8), 0.08–0.16 ms once per workgroup; cornell's region FLIP (lavapipe) 0.1348 / 0.1362 /
+// 0.1384. Once per workgroup in V_ρ's cells, where the cells a face's pixels read lie within
+// a part of it, left the light of the far side of a block on its faces (cornell 0.1655
+// against 0.1320).
 const VISIBILITY_PARTS: u32 = 8u;
 
 // Whether a VPL of `lights` at `vpl` (a virtual surface's cell: `VPL_CELL`) lights V_ρ at
