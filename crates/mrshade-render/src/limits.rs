@@ -480,6 +480,24 @@ mod tests {
     }
 
     #[test]
+    fn dlpv_visibility_maps_must_fit_one_buffer() {
+        // dlpv.virtual_bounce at 64³ cells over the content's own size: 32³ parts × 2 KiB =
+        // 64 MiB of visibility maps, one buffer; refused on a 16 MiB device, taken on 128 MiB.
+        let mut s = session(1, 64);
+        s.settings.method = mrshade_core::settings::Method::Dlpv;
+        s.settings.dlpv.virtual_bounce = true;
+        s.settings.dlpv.resolution = 64;
+        s.settings.dlpv.extent = 1.0;
+        let small = DeviceLimits { max_binding: 16 << 20, ..SMALL_DEVICE };
+        let err = fit_to_device(&s, small).unwrap_err().to_string();
+        assert!(err.contains("dlpv.virtual_bounce") && err.contains("64 MiB"), "{err}");
+        s.limits.gpu_mib = 4096;
+        fit_to_device(&s, SMALL_DEVICE).unwrap();
+        s.settings.dlpv.virtual_bounce = false;
+        fit_to_device(&s, small).unwrap();
+    }
+
+    #[test]
     fn the_gpu_budget_is_checked_before_allocation() {
         let mut s = session(0, 4096);
         s.limits.gpu_mib = 256;

@@ -49,7 +49,7 @@ use crate::scene_gpu::GpuProbe;
 use anyhow::Result;
 use glam::{UVec4, Vec3};
 use lights::{InjectSet, power_bound};
-use mrshade_core::settings::{RenderSettings, ShadowSettings};
+use mrshade_core::settings::{DlpvSettings, RenderSettings, ShadowSettings};
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry};
 use mrshade_gpu::timing::{Dispatch, Recorder};
@@ -108,11 +108,38 @@ pub(crate) fn build(inputs: &MethodInputs) -> Box<dyn LightTransport> {
     Box::new(DlpvMethod::new(inputs))
 }
 
-/// Halves the maps until every set's texels fit one buffer binding.
+/// Halves the maps until every set's texels fit one buffer binding; the visibility maps of
+/// `dlpv.virtual_bounce` (sized by the volume, not to be halved) must fit one as they are.
 pub(crate) fn fit(settings: &mut RenderSettings, fit: &mut Fit) -> Result<()> {
     let dlpv = &mut settings.dlpv;
     rsm::fit_resolution(fit, "dlpv.rsm_resolution", fit.shadow_layers, &mut dlpv.rsm_resolution)?;
-    rsm::fit_resolution(fit, "dlpv.probe_rsm_resolution", 2 * dlpv.probe_lights as u64, &mut dlpv.probe_rsm_resolution)
+    rsm::fit_resolution(
+        fit,
+        "dlpv.probe_rsm_resolution",
+        2 * dlpv.probe_lights as u64,
+        &mut dlpv.probe_rsm_resolution,
+    )?;
+    let maps = visibility_bytes(dlpv);
+    if maps > fit.max_binding {
+        anyhow::bail!(
+            "dlpv.virtual_bounce at dlpv.resolution = {} and dlpv.extent = {} needs {} MiB of visibility maps in one \
+             buffer, more than this device binds ({} MiB): lower dlpv.resolution or raise dlpv.extent",
+            dlpv.resolution,
+            dlpv.extent,
+            maps >> 20,
+            fit.max_binding >> 20
+        );
+    }
+    Ok(())
+}
+
+/// Bytes of the visibility maps `settings` makes (none without `dlpv.virtual_bounce`).
+fn visibility_bytes(settings: &DlpvSettings) -> u64 {
+    if gathered_volumes(settings) & vpl_gather::GATHERED_BOUNCE != 0 && settings.virtual_bounce {
+        visibility::bytes(settings.resolution, settings.extent)
+    } else {
+        0
+    }
 }
 
 /// GPU bytes of the method, item by item.
@@ -156,14 +183,7 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, layers: 
                 ),
             },
         ),
-        (
-            "dlpv visibility maps of V_ρ's parts (with dlpv.virtual_bounce)",
-            if gathered_volumes(d) & vpl_gather::GATHERED_BOUNCE != 0 && d.virtual_bounce {
-                visibility::bytes(d.resolution, d.extent)
-            } else {
-                0
-            },
-        ),
+        ("dlpv visibility maps of V_ρ's parts (with dlpv.virtual_bounce)", visibility_bytes(d)),
     ]
 }
 
