@@ -21,6 +21,9 @@ fn visibility_maps(@builtin(global_invocation_id) id: vec3u) {
     let block = part * PART_CELLS / 4u;
     let blocks = (gather_info.size.xyz + 3u) / 4u;
     if ((blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x] & (BLOCK_READ | BLOCK_NEAR_VIRTUAL)) == 0u) { return; }
+    // Past the maps' room (content grown since the maps were sized): the gather marches.
+    let map = part_map(part);
+    if (map == 0xffffffffu) { return; }
     let centre = part_centre(part);
     var word = 0u;
     for (var k = 0u; k < 2u; k++) {
@@ -30,5 +33,5 @@ fn visibility_maps(@builtin(global_invocation_id) id: vec3u) {
         let q = u32(min(round(t * MAP_UNITS), f32(NO_CROSSING)));
         word |= q << (16u * k);
     }
-    visibility[part_map(part) * MAP_WORDS + id.x] = word;
+    visibility[map * MAP_WORDS + id.x] = word;
 }
