@@ -18,13 +18,19 @@ use serde_json::json;
 const VOLUME_RHO: usize = 0;
 const VOLUME_DELTA: usize = 1;
 
-/// The red coefficients of accumulated volume `volume` (V_ρ, V_Δ, V_μ) in cell `at` after one
-/// frame of `s` (a `dlpv` session), with the cell's side and centre.
-fn volume_cell(s: &Setup, at: [u32; 3], volume: usize) -> (Vec4, f32, Vec3) {
+/// A renderer of `s` (a `dlpv` session) after `frames` frames, with its context.
+fn rendered(s: &Setup, frames: u32) -> (mrshade_gpu::GpuContext, Renderer) {
     let (_dir, session) = s.session();
     let ctx = mrshade_testkit::gpu();
     let mut renderer = Renderer::new(&ctx, &session).unwrap();
-    renderer.render_frames(&ctx, 1, |_| {}).unwrap();
+    renderer.render_frames(&ctx, frames, |_| {}).unwrap();
+    (ctx, renderer)
+}
+
+/// The red coefficients of accumulated volume `volume` (V_ρ, V_Δ, V_μ) in cell `at` after one
+/// frame of `s` (a `dlpv` session), with the cell's side and centre.
+fn volume_cell(s: &Setup, at: [u32; 3], volume: usize) -> (Vec4, f32, Vec3) {
+    let (ctx, renderer) = rendered(s, 1);
     let method: &DlpvMethod = renderer.method_as().unwrap();
     let params = method.params();
     let res = params.info.x;
@@ -192,10 +198,7 @@ fn a_virtual_face_takes_the_light_of_the_lit_virtual_face_before_it() {
     // Read 0.811 (bands 0–1 alone 0.782), the CPU 0.994 of which the face gives 0.822: most of
     // the shortfall is the VPLs' near field a centimetre from the face (VPLs of 8² texels here,
     // finer than the default 16², for it).
-    let (_dir, session) = sun_and_cube("gather_block = 8\n").session();
-    let ctx = mrshade_testkit::gpu();
-    let mut renderer = Renderer::new(&ctx, &session).unwrap();
-    renderer.render_frames(&ctx, 1, |_| {}).unwrap();
+    let (ctx, renderer) = rendered(&sun_and_cube("gather_block = 8\n"), 1);
     let method: &DlpvMethod = renderer.method_as().unwrap();
     let params = method.params();
     let (res, h) = (params.info.x, params.origin.w);
@@ -347,10 +350,7 @@ fn a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it() {
         // that only the floor lights.
         setup.probe = Some([0.002; 3]);
         setup.sky_only = true;
-        let (_dir, session) = setup.session();
-        let ctx = mrshade_testkit::gpu();
-        let mut renderer = Renderer::new(&ctx, &session).unwrap();
-        renderer.render_frames(&ctx, frames, |_| {}).unwrap();
+        let (ctx, renderer) = rendered(&setup, frames);
         let method: &DlpvMethod = renderer.method_as().unwrap();
         let params = method.params();
         let (res, h) = (params.info.x, params.origin.w);
@@ -423,10 +423,7 @@ fn a_parts_visibility_map_holds_how_far_the_virtual_surfaces_lie() {
     // A dim sky whose lights' maps see every side of the cube (their planes).
     setup.probe = Some([0.002; 3]);
     setup.sky_only = true;
-    let (_dir, session) = setup.session();
-    let ctx = mrshade_testkit::gpu();
-    let mut renderer = Renderer::new(&ctx, &session).unwrap();
-    renderer.render_frames(&ctx, 1, |_| {}).unwrap();
+    let (ctx, renderer) = rendered(&setup, 1);
     let method: &DlpvMethod = renderer.method_as().unwrap();
     let params = method.params();
     let h = params.origin.w;

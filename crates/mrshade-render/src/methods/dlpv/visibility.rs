@@ -38,7 +38,12 @@ pub(super) fn map_room(resolution: u32, extent: f32) -> u32 {
 
 /// Bytes of the maps (with `dlpv.virtual_bounce`).
 pub(super) fn bytes(resolution: u32, extent: f32) -> u64 {
-    (map_room(resolution, extent) as u64).pow(3) * MAP_WORDS as u64 * 4
+    room_bytes(map_room(resolution, extent))
+}
+
+/// Bytes of `room`³ maps.
+fn room_bytes(room: u32) -> u64 {
+    (room as u64).pow(3) * MAP_WORDS as u64 * 4
 }
 
 /// The pass and the maps it writes.
@@ -65,7 +70,7 @@ impl VisibilityMaps {
         let cs = wgpu::ShaderStages::COMPUTE;
         let maps = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/visibility_maps"),
-            size: (room as u64).pow(3) * MAP_WORDS as u64 * 4,
+            size: room_bytes(room),
             // Tests read them back.
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,

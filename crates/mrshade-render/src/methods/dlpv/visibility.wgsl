@@ -1,7 +1,8 @@
 // Where the virtual surfaces stand in a VPL's way (`dlpv.virtual_bounce`; vpl_gather.wgsl,
 // visibility_maps.wgsl): their cells' planes (vpl_aggregate.wgsl `planes`) crossed on the
 // path, and per part of 2³ cells of V_ρ's blocks a map of how far the first one lies in
-// every direction, so that a path's test is one read instead of a march.
+// every direction, so that a path's test is one read instead of a march. The including module
+// binds `params`, `gather_info`, `planes` and `blocks_read`.
 
 // Texels per side of a part's map (octahedral.wgsl): 1 024 directions, 0.1 rad apart — a
 // cell's width at ten cells.
@@ -55,3 +56,10 @@ fn part_map(part: vec3u) -> u32 {
 
 // The centre of part `part`, in cell coordinates.
 fn part_centre(part: vec3u) -> vec3f { return vec3f(part * PART_CELLS) + 0.5 * f32(PART_CELLS); }
+
+// The `BLOCK_*` bits (volume.wgsl) of block `block` of 4³ cells of the gathered box, `blocks`
+// blocks along each axis: the gather sums the blocks a pixel reads or beside a virtual surface,
+// and the maps are written for theirs.
+fn block_bits(block: vec3u, blocks: vec3u) -> u32 {
+    return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x];
+}

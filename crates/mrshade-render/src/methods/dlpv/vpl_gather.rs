@@ -200,9 +200,10 @@ pub(super) struct VplGather {
     rho_first: UVec3,
     /// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
     visibility: Option<VisibilityMaps>,
-    /// Their parts along each axis at most (`map_room`; 0 without them), and the index of the
-    /// first cell VPL (`GatherInfo`).
-    maps_room: [u32; 2],
+    /// Their parts along each axis at most (`map_room`; 0 without them).
+    room: u32,
+    /// The index of the first cell VPL (`GatherInfo`).
+    cell_base: u32,
 }
 
 /// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
@@ -257,8 +258,8 @@ impl VplGather {
         let chunks = chunks(cells, partial);
         let room = if virtual_bounce { map_room(values.info.x, extent) } else { 0 };
         // The cells' VPLs after room for every map's and the photo's.
-        let maps_room = [room, map_vpls + tiles[0] * tiles[1]];
-        let info = GatherInfo::new(chunks, virtual_box, values, gathered, maps_room);
+        let cell_base = map_vpls + tiles[0] * tiles[1];
+        let info = GatherInfo::new(chunks, virtual_box, values, gathered, [room, cell_base]);
         let size = info.size.truncate();
         let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dlpv/vpl_gather_info"),
@@ -484,7 +485,8 @@ impl VplGather {
             size,
             gathered,
             visibility,
-            maps_room,
+            room,
+            cell_base,
             rho_first: info.rho_first.truncate(),
         }
     }
@@ -492,12 +494,12 @@ impl VplGather {
     /// The visibility maps of V_ρ's parts (with `dlpv.virtual_bounce`).
     pub fn visibility_maps(&self) -> Option<VisibilityMapsView<'_>> {
         let first_part = self.rho_first / 4 * 2;
-        self.visibility.as_ref().map(|v| VisibilityMapsView { maps: &v.maps, first_part, room: self.maps_room[0] })
+        self.visibility.as_ref().map(|v| VisibilityMapsView { maps: &v.maps, first_part, room: self.room })
     }
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
-        let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered, self.maps_room);
+        let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered, [self.room, self.cell_base]);
         self.rho_first = info.rho_first.truncate();
         self.size = info.size.truncate();
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));

@@ -179,10 +179,6 @@ fn block_near_virtual(block: vec3u, blocks: vec3u) -> bool {
     return virtual_bounce() && (block_bits(block, blocks) & BLOCK_NEAR_VIRTUAL) != 0u;
 }
 
-fn block_bits(block: vec3u, blocks: vec3u) -> u32 {
-    return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x];
-}
-
 fn cells_gathered() -> u32 { return gather_info.size.x * gather_info.size.y * gather_info.size.z; }
 
 // The first VPL and one past the last of chunk `chunk` of `count`.
