@@ -108,9 +108,7 @@ impl Renderer {
             self.shadows.set_layers(queue, &self.scene.shadow_layers);
         }
         self.scene.geometry.begin_frame(queue);
-        if self.scene.geometry.moved() {
-            self.shadows.geometry_changed();
-        }
+        self.shadows.geometry_changed(self.scene.geometry.moved_casters());
         let (w, h) = self.internal_size();
         let unjittered = inputs.camera.clip_from_world(w, h);
         let camera_moved = self.previous_clip_from_world.is_some_and(|p| p != unjittered);

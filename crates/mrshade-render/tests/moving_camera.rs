@@ -142,3 +142,47 @@ fn a_moved_light_equals_one_placed_there() {
     // Without moving the shadow maps with the light this is 0.0048.
     assert!(flip < 0.003, "mean FLIP {flip}");
 }
+
+/// An object moved through the frame's inputs (as an animation moves it) lights and shadows
+/// as one placed there from the start, real or virtual: the shadow layers and RSMs of the
+/// kind of caster that moved are drawn again, those of the other kept (`direct`, `dlpv`: no
+/// temporal reuse, so the two frames must match to the bit).
+#[test]
+fn a_moved_object_equals_one_placed_there() {
+    for method in ["direct", "dlpv"] {
+        for moving_real in [false, true] {
+            let at = |x: f32| {
+                let mut s = Setup::top_down(SIZE);
+                s.probe = Some([0.3, 0.3, 0.3]);
+                s.top_toml = format!("method = \"{method}\"\n");
+                s.extra_toml = "[shadows]\nresolution = 256\n[dlpv]\nresolution = 16\nrsm_resolution = 64\n".into();
+                s.plane(2.0, 0.0, 0.5, true);
+                s.cube([x, 0.08, 0.0], 0.08, moving_real).cube([0.0, 0.1, 0.3], 0.1, !moving_real);
+                s.light(
+                    json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.9}}),
+                    [0.1, 0.9, 0.1],
+                    true,
+                );
+                s.session()
+            };
+            let ((_a, from), (_b, to)) = (at(-0.3), at(0.2));
+            let instances: Vec<Mat4> = to.scene.instances.iter().map(|i| i.world_from_object).collect();
+            let mut moved = Rendered::new(from);
+            let camera = moved.renderer.session_camera();
+            render(&mut moved, camera, 1);
+            let mut profiler = mrshade_gpu::timing::profiler(&moved.ctx, false).unwrap();
+            let inputs = FrameInputs { instances: Some(&instances), ..FrameInputs::camera(camera) };
+            moved.renderer.render_untimed(&moved.ctx, &mut profiler, &inputs).unwrap();
+            let mut placed = Rendered::new(to);
+            render(&mut placed, camera, 2);
+            let (a, b) = (srgb(&placed), srgb(&moved));
+            let differing = a.iter().zip(&b).filter(|(p, q)| p != q).count();
+            assert_eq!(
+                differing,
+                0,
+                "{method}, moving a {} cube: {differing} bytes differ",
+                ["virtual", "real"][moving_real as usize]
+            );
+        }
+    }
+}

@@ -7,7 +7,7 @@
 
 use super::rsm::RsmPass;
 use crate::raster::Rasterizer;
-use crate::scene_gpu::{GpuLight, GpuScene, ShadowLayer, pack_lights};
+use crate::scene_gpu::{GpuLight, GpuScene, Moved, ShadowLayer, pack_lights};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::flags::Realness;
@@ -343,9 +343,18 @@ impl ProbeMaps {
 
     /// Draws the maps.
     pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
+        self.record_with(rec, rasterizer, &[]);
+    }
+
+    /// Draws the maps, and `others` (the scene lights' maps, with the casters that moved for
+    /// them) in the same passes.
+    pub fn record_with(&self, rec: &mut Recorder, rasterizer: &Rasterizer, others: &[(&RsmPass, Moved)]) {
+        let mut sets = others.to_vec();
         if let Some((_, rsm)) = &self.drawn {
-            rsm.record_maps(rec, rasterizer, false);
+            // The maps follow the virtual content's cube: every layer moves with it.
+            sets.push((rsm, Moved::ALL));
         }
+        RsmPass::record_sets(rec, rasterizer, &sets, false);
         if let Some(near) = &self.near {
             near.record(rec);
         }

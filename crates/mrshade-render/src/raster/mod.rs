@@ -5,7 +5,7 @@
 //! a set of maps) are drawn by one dispatch pair. See raster.wgsl for why this is not the
 //! fixed-function rasteriser.
 
-use crate::scene_gpu::{Geometry, ShadowLayer};
+use crate::scene_gpu::{Geometry, Moved, ShadowLayer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, UVec4, Vec4};
 use mrshade_core::flags::Realness;
@@ -107,11 +107,11 @@ impl ViewSpec {
 /// `target`.
 pub struct RasterViews {
     uniforms: Vec<ViewUniform>,
+    /// What each view sees and bytes `start..end` of `target` it covers.
+    views: Vec<(Casters, (u64, u64))>,
     entries: wgpu::Buffer,
     /// The layers of every view.
     pub target: wgpu::Buffer,
-    /// Bytes `start..end` of `target` that the views cover (cleared before drawing).
-    span: (u64, u64),
     args: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     args_group: wgpu::BindGroup,
@@ -208,9 +208,15 @@ impl Rasterizer {
                 cache: None,
             })
         };
+        // cs_big's dispatch (x: the big triangles, counted by cs_small) and the kind of view
+        // cs_small leaves as it is, one set of four words per `Skip`.
+        let args_init: Vec<u32> = [Skip::None, Skip::RealOnly, Skip::VirtualOnly]
+            .iter()
+            .flat_map(|&s| [0, BIG_TILE_STRIDE, 1, s as u32])
+            .collect();
         let args_init = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("raster/args_init"),
-            contents: bytemuck::cast_slice(&[0u32, BIG_TILE_STRIDE, 1]),
+            contents: bytemuck::cast_slice(&args_init),
             usage: wgpu::BufferUsages::COPY_SRC,
         });
         Self {
@@ -253,7 +259,7 @@ impl Rasterizer {
         let device = &ctx.device;
         let all = self.triangle_count;
         let capacity = BIG_CAPACITY * (specs.len() as u32).clamp(1, 4);
-        let mut span = (u64::MAX, 0);
+        let mut spans = Vec::new();
         let uniforms: Vec<ViewUniform> = specs
             .iter()
             .map(|spec| {
@@ -266,7 +272,7 @@ impl Rasterizer {
                     Casters::FarthestOf { first, count } => (0, first, count, 1.0),
                 };
                 let bytes = spec.size.0 as u64 * spec.size.1 as u64 * 8;
-                span = (span.0.min(spec.offset), span.1.max(spec.offset + bytes));
+                spans.push((spec.casters, (spec.offset, spec.offset + bytes)));
                 ViewUniform {
                     clip_from_world: spec.clip_from_world,
                     size: UVec4::new(spec.size.0, spec.size.1, filter, first + triangles),
@@ -277,7 +283,7 @@ impl Rasterizer {
                 }
             })
             .collect();
-        let span = if uniforms.is_empty() { (0, 0) } else { span };
+        let span_end = spans.iter().map(|(_, (_, end))| *end).max().unwrap_or(0);
         let triangles = uniforms.iter().map(|u| u.size.w - u.limits.w).max().unwrap_or(0);
         let mut entries_contents = uniforms.clone();
         entries_contents.resize(uniforms.len().max(1), ViewUniform::zeroed());
@@ -297,10 +303,10 @@ impl Rasterizer {
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
         let target = match target {
             Some(buffer) => buffer.clone(),
-            None => buffer("target", span.1.max(8), storage | wgpu::BufferUsages::COPY_SRC),
+            None => buffer("target", span_end.max(8), storage | wgpu::BufferUsages::COPY_SRC),
         };
         let big = buffer("big_triangles", capacity as u64 * BIG_RECORD_BYTES, storage);
-        let args = buffer("big_args", 12, storage | wgpu::BufferUsages::INDIRECT);
+        let args = buffer("big_args", ARGS_BYTES, storage | wgpu::BufferUsages::INDIRECT);
         let bind_group = bind::group(
             device,
             &format!("{label}/bind_group"),
@@ -317,15 +323,45 @@ impl Rasterizer {
         );
         let args_group =
             bind::group(device, &format!("{label}/args_group"), &self.args_layout, &[args.as_entire_binding()]);
-        RasterViews { uniforms, entries, target, span, args, bind_group, args_group, triangles }
+        RasterViews { uniforms, views: spans, entries, target, args, bind_group, args_group, triangles }
     }
 
     /// Clears and rasterises every view of `sets`, timed as one pass named `label`.
     pub fn record<'a>(&self, rec: &mut Recorder, label: &str, sets: impl IntoIterator<Item = &'a RasterViews>) {
-        let sets: Vec<&RasterViews> = sets.into_iter().filter(|s| !s.is_empty()).collect();
-        for s in &sets {
-            rec.encoder.clear_buffer(&s.target, s.span.0, Some(s.span.1 - s.span.0));
-            rec.encoder.copy_buffer_to_buffer(&self.args_init, 0, &s.args, 0, 12);
+        self.record_moved(rec, label, sets.into_iter().map(|s| (s, Moved::ALL)));
+    }
+
+    /// Clears and rasterises, in one pass named `label`, the views of each set that see
+    /// casters of a kind that moved for it: a view of real casters alone keeps its texels
+    /// when only virtual instances moved (a virtual object that turns in front of a static
+    /// room redraws half of each light's shadow layers). Views of every caster, or of an
+    /// instance's triangles, are redrawn when anything moved.
+    pub fn record_moved<'a>(
+        &self,
+        rec: &mut Recorder,
+        label: &str,
+        sets: impl IntoIterator<Item = (&'a RasterViews, Moved)>,
+    ) {
+        let sets: Vec<&RasterViews> = sets
+            .into_iter()
+            .filter(|(s, moved)| !s.is_empty() && moved.any())
+            .map(|(s, moved)| {
+                let skip = match (moved.of(Realness::Real), moved.of(Realness::Virtual)) {
+                    (true, false) => Skip::VirtualOnly,
+                    (false, true) => Skip::RealOnly,
+                    _ => Skip::None,
+                };
+                for &(casters, (start, end)) in &s.views {
+                    if !skip.keeps(casters) {
+                        rec.encoder.clear_buffer(&s.target, start, Some(end - start));
+                    }
+                }
+                rec.encoder.copy_buffer_to_buffer(&self.args_init, skip as u64 * ARGS_BYTES, &s.args, 0, ARGS_BYTES);
+                s
+            })
+            .collect();
+        if sets.is_empty() {
+            return;
         }
         rec.compute(label, |pass| {
             pass.set_pipeline(&self.small);
@@ -342,6 +378,27 @@ impl Rasterizer {
                 pass.dispatch_workgroups_indirect(&s.args, 0);
             }
         });
+    }
+}
+
+/// Bytes of a set's `big_args` (raster.wgsl): cs_big's dispatch and the kind of view to skip.
+const ARGS_BYTES: u64 = 16;
+
+/// The views a draw leaves as they are (the filter values of raster.wgsl `RasterView.size.z`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Skip {
+    None = 0,
+    RealOnly = 1,
+    VirtualOnly = 2,
+}
+
+impl Skip {
+    /// Whether a view of `casters` keeps its texels.
+    fn keeps(self, casters: Casters) -> bool {
+        matches!(
+            (self, casters),
+            (Skip::RealOnly, Casters::Only(Realness::Real)) | (Skip::VirtualOnly, Casters::Only(Realness::Virtual))
+        )
     }
 }
 

@@ -34,9 +34,10 @@ struct RasterView {
 @group(0) @binding(4) var<storage, read> triangles: array<vec4u>;
 @group(0) @binding(5) var<storage, read_write> target_texels: array<atomic<u64>>;
 @group(0) @binding(6) var<storage, read_write> big: array<BigTriangle>;
-// Indirect dispatch arguments of cs_big: x counts the big triangles. A group of its own,
-// bound only for cs_small, because cs_big's dispatch reads it as arguments.
-@group(1) @binding(0) var<storage, read_write> big_args: array<atomic<u32>, 3>;
+// Indirect dispatch arguments of cs_big: x counts the big triangles; then the caster filter
+// of the views this draw leaves as they are (0: none; raster/mod.rs `Skip`). A group of its
+// own, bound only for cs_small, because cs_big's dispatch reads it as arguments.
+@group(1) @binding(0) var<storage, read_write> big_args: array<atomic<u32>, 4>;
 
 // The view this invocation draws, and its index (set first thing by each entry point).
 var<private> view: RasterView;
@@ -100,6 +101,8 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) 
     let tri = triangles[id];
     let inst = instances[tri.x];
     let real = (inst.info.y & SURFACE_REAL) != 0u;
+    // Views of one kind of caster whose casters did not move keep their texels.
+    if (view.size.z != 0u && view.size.z == atomicLoad(&big_args[3])) { return; }
     if ((view.size.z == FILTER_REAL && !real) || (view.size.z == FILTER_VIRTUAL && real)) { return; }
     var v: array<vec4f, 3>;
     var d: array<f32, 3>;

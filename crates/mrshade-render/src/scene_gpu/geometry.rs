@@ -57,10 +57,10 @@ pub struct Geometry {
     object_boxes: Vec<(Vec3, Vec3)>,
     current: Vec<Mat4>,
     previous: Vec<Mat4>,
-    /// Whether `current` differed from `previous` at the last `begin_frame`.
-    moved: bool,
-    /// Whether a deformation changed since the last `begin_frame`.
-    deform_pending: bool,
+    /// Which kinds of instance differed from `previous` (or deformed) at the last `begin_frame`.
+    moved: Moved,
+    /// Which kinds of instance a deformation changed since the last `begin_frame`.
+    deform_pending: Moved,
     /// Whether one changed before the last `begin_frame` (this frame deforms).
     deformed: bool,
 }
@@ -135,8 +135,8 @@ impl Geometry {
                 .collect(),
             previous: current.clone(),
             current,
-            moved: false,
-            deform_pending: false,
+            moved: Moved::NONE,
+            deform_pending: Moved::NONE,
             deformed: false,
             static_info,
         };
@@ -158,7 +158,7 @@ impl Geometry {
     /// `object_box` (takes effect at the next frame, which counts as moved).
     pub fn set_deformed_box(&mut self, index: usize, object_box: (Vec3, Vec3)) {
         self.object_boxes[index] = object_box;
-        self.deform_pending = true;
+        self.deform_pending.add(self.realness[index]);
     }
 
     /// World-space bounding spheres (centre, radius) of the virtual instances, as they will
@@ -226,8 +226,14 @@ impl Geometry {
         if !gpu.is_empty() {
             queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&gpu));
         }
-        self.deformed = std::mem::take(&mut self.deform_pending);
-        self.moved = self.current != self.previous || self.deformed;
+        let mut moved = std::mem::take(&mut self.deform_pending);
+        self.deformed = moved.any();
+        for ((now, before), &realness) in self.current.iter().zip(&self.previous).zip(&self.realness) {
+            if now != before {
+                moved.add(realness);
+            }
+        }
+        self.moved = moved;
         self.previous.clone_from(&self.current);
     }
 
@@ -238,7 +244,53 @@ impl Geometry {
 
     /// Whether an instance moved between the last two frames.
     pub fn moved(&self) -> bool {
+        self.moved.any()
+    }
+
+    /// Which kinds of instance moved (or deformed) between the last two frames: views that
+    /// see only real casters stay as they were when only virtual instances moved.
+    pub fn moved_casters(&self) -> Moved {
         self.moved
+    }
+}
+
+/// Which kinds of caster (real, virtual) moved or deformed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Moved {
+    real: bool,
+    inserted: bool,
+}
+
+impl Moved {
+    /// Nothing moved.
+    pub const NONE: Self = Self { real: false, inserted: false };
+    /// Everything counts as moved (a light or a view's projection changed).
+    pub const ALL: Self = Self { real: true, inserted: true };
+
+    /// Instances of `realness` moved too.
+    pub fn add(&mut self, realness: Realness) {
+        match realness {
+            Realness::Real => self.real = true,
+            Realness::Virtual => self.inserted = true,
+        }
+    }
+
+    /// Whether instances of `realness` moved.
+    pub fn of(self, realness: Realness) -> bool {
+        match realness {
+            Realness::Real => self.real,
+            Realness::Virtual => self.inserted,
+        }
+    }
+
+    /// Whether anything moved.
+    pub fn any(self) -> bool {
+        self.real || self.inserted
+    }
+
+    /// What moved in either.
+    pub fn union(self, other: Self) -> Self {
+        Self { real: self.real || other.real, inserted: self.inserted || other.inserted }
     }
 }
 

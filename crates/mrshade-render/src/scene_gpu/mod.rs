@@ -8,7 +8,7 @@ mod materials;
 mod mips;
 mod probe;
 
-pub use geometry::{Geometry, GpuInstance, Vertex};
+pub use geometry::{Geometry, GpuInstance, Moved, Vertex};
 pub(crate) use lights::MAX_FRUSTUM_HALF_ANGLE;
 pub use lights::{GpuLight, ShadowLayer, cube_faces, look_to, pack_lights};
 pub use materials::{GpuMaterial, GpuMaterials};

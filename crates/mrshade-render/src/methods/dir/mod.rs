@@ -24,6 +24,7 @@ pub use probe_pyramid::ProbePyramid;
 use super::{AovView, FrameChange, IndirectLight, LightTransport, MethodInputs, PointLight};
 use crate::outputs::Aov;
 use crate::raster::Rasterizer;
+use crate::scene_gpu::Moved;
 use anyhow::Result;
 use filter::{FilterPass, History};
 use indirect::IndirectPass;
@@ -59,7 +60,7 @@ pub struct DirMethod {
     /// Whether this frame's points on deformed instances must follow them.
     follow_points: bool,
     /// Whether the RSMs must be drawn again (first frame, geometry or a light moved).
-    rsm_stale: bool,
+    rsm_stale: Moved,
     /// Lower bound of the VPL–receiver distance (m): `clamp_distance` × the scene's radius.
     d_min: f32,
     /// The interleave factor I (`dir.interleave`).
@@ -143,7 +144,7 @@ impl DirMethod {
             rendered: 0,
             still_frames: 0,
             follow_points: false,
-            rsm_stale: true,
+            rsm_stale: Moved::ALL,
             d_min,
             interleave: settings.interleave,
         }
@@ -169,7 +170,10 @@ impl LightTransport for DirMethod {
         let light_changed = change.geometry_moved || change.moved_light_layers.is_some();
         // The RSMs see the scene from the lights: only where the geometry or a light moved
         // do they change (a camera moving through a still scene keeps them).
-        self.rsm_stale |= light_changed;
+        self.rsm_stale = self.rsm_stale.union(match change.moved_light_layers {
+            Some(_) => Moved::ALL,
+            None => change.geometry.moved_casters(),
+        });
         self.still_frames = if light_changed || self.rendered == 0 { 0 } else { self.still_frames + 1 };
         let history = History {
             exists: self.rendered > 0,
@@ -185,8 +189,9 @@ impl LightTransport for DirMethod {
         if std::mem::take(&mut self.follow_points) {
             self.ism_resources.record_follow(rec);
         }
-        if std::mem::take(&mut self.rsm_stale) {
-            self.rsm.record(rec, rasterizer);
+        let rsm_moved = std::mem::take(&mut self.rsm_stale);
+        if rsm_moved.any() {
+            self.rsm.record(rec, rasterizer, rsm_moved);
         }
         // The ISM atlases' clear runs beside the VPLs' last dispatch (a few hundred
         // workgroups that leave the GPU room): at the start of the ISM pass it took 0.03 ms.

@@ -45,7 +45,7 @@ use super::rsm::{self, RsmPass};
 use super::{FrameChange, IndirectLight, LightTransport, MethodInputs};
 use crate::limits::Fit;
 use crate::raster::Rasterizer;
-use crate::scene_gpu::GpuProbe;
+use crate::scene_gpu::{GpuProbe, Moved};
 use anyhow::Result;
 use glam::{UVec4, Vec3};
 use lights::{InjectSet, power_bound};
@@ -97,6 +97,8 @@ pub struct DlpvMethod {
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     stale: bool,
+    /// The kinds of caster the scene lights' maps no longer show.
+    scene_maps_moved: Moved,
     /// The camera or the photo changed: V_ρ takes the photo's light again.
     stale_photo: bool,
     /// Gather once more next frame (with `dlpv.virtual_bounce`, after the maps were drawn).
@@ -440,6 +442,7 @@ impl DlpvMethod {
             },
             indirect,
             stale: true,
+            scene_maps_moved: Moved::ALL,
             stale_photo: false,
             gather_again: false,
         }
@@ -477,12 +480,14 @@ impl LightTransport for DlpvMethod {
             // The cube follows the virtual content (spec §2.12.7: "kept synchronous").
             self.follow(queue, change.geometry);
             self.stale = true;
+            self.scene_maps_moved = self.scene_maps_moved.union(change.geometry.moved_casters());
         }
         if let Some(layers) = change.moved_light_layers {
             if let Some(rsm) = &mut self.scene_maps {
                 rsm.set_layers(queue, layers);
             }
             self.stale = true;
+            self.scene_maps_moved = Moved::ALL;
         }
         // The photo's light in the gathered volumes follows the camera and the photo, and the
         // cells the pixels read (the gathered bounce light) the camera.
@@ -500,10 +505,11 @@ impl LightTransport for DlpvMethod {
             gather.record(rec);
         }
         if std::mem::take(&mut self.stale) {
-            if let Some(rsm) = &self.scene_maps {
-                rsm.record_maps(rec, rasterizer, false);
-            }
-            self.probe.record(rec, rasterizer);
+            // The scene lights' maps (only those of the casters that moved) and the probe's
+            // (which follow the cube) in one raster pass and one resolve pass.
+            let moved = std::mem::take(&mut self.scene_maps_moved);
+            let scene_maps: Vec<_> = self.scene_maps.iter().map(|rsm| (rsm, moved)).collect();
+            self.probe.record_with(rec, rasterizer, &scene_maps);
             // The VPLs before V_ρ is cleared below (their virtual surfaces read it).
             if let Some(gather) = &self.vpl_gather {
                 gather.record_vpls(rec);

@@ -6,7 +6,7 @@
 
 use crate::limits::Fit;
 use crate::raster::{RasterViews, Rasterizer, ViewSpec};
-use crate::scene_gpu::{GpuMaterials, GpuScene, ShadowLayer};
+use crate::scene_gpu::{GpuMaterials, GpuScene, Moved, ShadowLayer};
 use anyhow::{Result, bail};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
@@ -233,38 +233,49 @@ impl RsmPass {
         }
     }
 
-    /// Rasterises, resolves and reduces every layer.
-    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
-        self.record_maps(rec, rasterizer, true);
+    /// Rasterises the layers of the casters that `moved` (`Moved::ALL` after a light moved),
+    /// resolves and reduces every layer.
+    pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer, moved: Moved) {
+        Self::record_sets(rec, rasterizer, &[(self, moved)], true);
     }
 
-    /// Rasterises and resolves every layer, and reduces it into the flux pyramid if
-    /// `pyramid` (the VPL sampler's; injecting every texel needs none: ten tiny dispatches
-    /// per set of maps).
-    pub fn record_maps(&self, rec: &mut Recorder, rasterizer: &Rasterizer, pyramid: bool) {
-        if self.views.is_empty() {
+    /// Rasterises the layers of each set's casters that moved (the others keep their texels:
+    /// `Rasterizer::record_moved`), resolves every layer (the same texels again where nothing
+    /// moved), and reduces it into the flux pyramid if `pyramid` (the VPL sampler's;
+    /// injecting every texel needs none: ten tiny dispatches per set of maps). The sets share
+    /// one raster pass and one resolve pass: their dispatches do not wait for each other.
+    pub fn record_sets(rec: &mut Recorder, rasterizer: &Rasterizer, sets: &[(&RsmPass, Moved)], pyramid: bool) {
+        let sets: Vec<(&RsmPass, Moved)> =
+            sets.iter().copied().filter(|(s, m)| !s.views.is_empty() && m.any()).collect();
+        if sets.is_empty() {
             return;
         }
-        rasterizer.record(rec, Self::RASTER_LABEL, [&self.views]);
-        let groups = self.resolution.div_ceil(8);
+        rasterizer.record_moved(rec, Self::RASTER_LABEL, sets.iter().map(|(s, moved)| (&s.views, *moved)));
         rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.resolve);
-            pass.set_bind_group(0, &self.resolve_groups[0], &[]);
-            pass.set_bind_group(1, &self.resolve_groups[1], &[]);
-            pass.dispatch_workgroups(groups, groups, self.layers);
-            if !pyramid {
-                return;
-            }
-            pass.set_pipeline(&self.base);
-            pass.set_bind_group(0, &self.level_groups[0], &[]);
-            pass.dispatch_workgroups(groups, groups, self.layers);
-            pass.set_pipeline(&self.reduce);
-            for (level, group) in self.level_groups.iter().enumerate().skip(1) {
-                let side = (self.resolution >> level).div_ceil(8);
-                pass.set_bind_group(0, group, &[]);
-                pass.dispatch_workgroups(side, side, self.layers);
+            for (set, _) in &sets {
+                set.record_resolve(pass, pyramid);
             }
         });
+    }
+
+    fn record_resolve(&self, pass: &mut wgpu::ComputePass<'_>, pyramid: bool) {
+        let groups = self.resolution.div_ceil(8);
+        pass.set_pipeline(&self.resolve);
+        pass.set_bind_group(0, &self.resolve_groups[0], &[]);
+        pass.set_bind_group(1, &self.resolve_groups[1], &[]);
+        pass.dispatch_workgroups(groups, groups, self.layers);
+        if !pyramid {
+            return;
+        }
+        pass.set_pipeline(&self.base);
+        pass.set_bind_group(0, &self.level_groups[0], &[]);
+        pass.dispatch_workgroups(groups, groups, self.layers);
+        pass.set_pipeline(&self.reduce);
+        for (level, group) in self.level_groups.iter().enumerate().skip(1) {
+            let side = (self.resolution >> level).div_ceil(8);
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(side, side, self.layers);
+        }
     }
 }
 
