@@ -351,10 +351,8 @@ impl Rasterizer {
                     (false, true) => Skip::RealOnly,
                     _ => Skip::None,
                 };
-                for &(casters, (start, end)) in &s.views {
-                    if !skip.keeps(casters) {
-                        rec.encoder.clear_buffer(&s.target, start, Some(end - start));
-                    }
+                for (start, end) in spans_to_clear(&s.views, skip) {
+                    rec.encoder.clear_buffer(&s.target, start, Some(end - start));
                 }
                 rec.encoder.copy_buffer_to_buffer(&self.args_init, skip as u64 * ARGS_BYTES, &s.args, 0, ARGS_BYTES);
                 s
@@ -402,6 +400,27 @@ impl Skip {
     }
 }
 
+/// The byte ranges of a set's target to clear before the views that `skip` does not keep
+/// are drawn (`views`: what each sees and the bytes it covers): runs of neighbouring views in
+/// one range (one fill instead of one per view: the probe's maps are 64 views).
+fn spans_to_clear(views: &[(Casters, (u64, u64))], skip: Skip) -> Vec<(u64, u64)> {
+    let mut views: Vec<(bool, (u64, u64))> = views.iter().map(|&(casters, span)| (skip.keeps(casters), span)).collect();
+    views.sort_by_key(|&(_, (start, _))| start);
+    let mut spans: Vec<(u64, u64)> = Vec::new();
+    let mut run_open = false;
+    for (kept, (start, end)) in views {
+        match spans.last_mut() {
+            _ if kept => run_open = false,
+            Some(last) if run_open => last.1 = last.1.max(end),
+            _ => {
+                spans.push((start, end));
+                run_open = true;
+            }
+        }
+    }
+    spans
+}
+
 /// The composed WGSL module.
 pub const SHADER: &str = wgsl!(
     "../../shaders/lib/gbuffer.wgsl",
@@ -409,3 +428,32 @@ pub const SHADER: &str = wgsl!(
     "../../shaders/lib/raster_common.wgsl",
     "raster.wgsl",
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_views_drawn_again_are_cleared_in_runs_and_the_kept_ones_not() {
+        let real = Casters::Only(Realness::Real);
+        let inserted = Casters::Only(Realness::Virtual);
+        // A point light's layers: real faces, then virtual ones; a gap after the last.
+        let views: Vec<(Casters, (u64, u64))> = [real, real, inserted, inserted]
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| (c, (i as u64 * 8, i as u64 * 8 + 8)))
+            .collect();
+        assert_eq!(spans_to_clear(&views, Skip::None), vec![(0, 32)]);
+        assert_eq!(spans_to_clear(&views, Skip::RealOnly), vec![(16, 32)]);
+        assert_eq!(spans_to_clear(&views, Skip::VirtualOnly), vec![(0, 16)]);
+        // Pairs of layers, light by light (the probe's maps): every other view kept.
+        let pairs: Vec<(Casters, (u64, u64))> = [real, inserted, real, inserted]
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| (c, (i as u64 * 8, i as u64 * 8 + 8)))
+            .collect();
+        assert_eq!(spans_to_clear(&pairs, Skip::RealOnly), vec![(8, 16), (24, 32)]);
+        // Views of every caster are never kept.
+        assert_eq!(spans_to_clear(&[(Casters::All, (0, 8))], Skip::RealOnly), vec![(0, 8)]);
+    }
+}
