@@ -334,7 +334,7 @@ impl Rasterizer {
     /// Clears and rasterises, in one pass named `label`, the views of each set that see
     /// casters of a kind that moved for it: a view of real casters alone keeps its texels
     /// when only virtual instances moved (a virtual object that turns in front of a static
-    /// room redraws half of each light's shadow layers). Views of every caster, or of an
+    /// room redraws only half of each light's shadow layers). Views of every caster, or of an
     /// instance's triangles, are redrawn when anything moved.
     pub fn record_moved<'a>(
         &self,

@@ -98,11 +98,11 @@ fn cs_small(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) 
     view = views[view_index];
     let id = view.limits.w + gid.x + gid.y * groups.x * 64u;
     if (id >= view.size.w) { return; }
+    // Views of one kind of caster whose casters did not move keep their texels.
+    if (view.size.z != 0u && view.size.z == atomicLoad(&big_args[3])) { return; }
     let tri = triangles[id];
     let inst = instances[tri.x];
     let real = (inst.info.y & SURFACE_REAL) != 0u;
-    // Views of one kind of caster whose casters did not move keep their texels.
-    if (view.size.z != 0u && view.size.z == atomicLoad(&big_args[3])) { return; }
     if ((view.size.z == FILTER_REAL && !real) || (view.size.z == FILTER_VIRTUAL && real)) { return; }
     var v: array<vec4f, 3>;
     var d: array<f32, 3>;
