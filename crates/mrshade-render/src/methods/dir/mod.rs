@@ -59,7 +59,7 @@ pub struct DirMethod {
     still_frames: u32,
     /// Whether this frame's points on deformed instances must follow them.
     follow_points: bool,
-    /// Whether the RSMs must be drawn again (first frame, geometry or a light moved).
+    /// The kinds of caster the RSMs no longer show (all at first and after a light moved).
     rsm_stale: Moved,
     /// Lower bound of the VPL–receiver distance (m): `clamp_distance` × the scene's radius.
     d_min: f32,
@@ -189,10 +189,8 @@ impl LightTransport for DirMethod {
         if std::mem::take(&mut self.follow_points) {
             self.ism_resources.record_follow(rec);
         }
-        let rsm_moved = std::mem::take(&mut self.rsm_stale);
-        if rsm_moved.any() {
-            self.rsm.record(rec, rasterizer, rsm_moved);
-        }
+        // Draws nothing where nothing moved.
+        self.rsm.record(rec, rasterizer, std::mem::take(&mut self.rsm_stale));
         // The ISM atlases' clear runs beside the VPLs' last dispatch (a few hundred
         // workgroups that leave the GPU room): at the start of the ISM pass it took 0.03 ms.
         self.vpl.record(rec, parity, &self.ism.clear);

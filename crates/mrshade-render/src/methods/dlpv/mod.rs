@@ -96,9 +96,8 @@ pub struct DlpvMethod {
     gather: Dispatch,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
-    stale: bool,
-    /// The kinds of caster the scene lights' maps no longer show.
-    scene_maps_moved: Moved,
+    /// The kinds of caster the maps no longer show (none: the volumes are as they were).
+    stale: Moved,
     /// The camera or the photo changed: V_ρ takes the photo's light again.
     stale_photo: bool,
     /// Gather once more next frame (with `dlpv.virtual_bounce`, after the maps were drawn).
@@ -441,8 +440,7 @@ impl DlpvMethod {
                 workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
             },
             indirect,
-            stale: true,
-            scene_maps_moved: Moved::ALL,
+            stale: Moved::ALL,
             stale_photo: false,
             gather_again: false,
         }
@@ -479,15 +477,13 @@ impl LightTransport for DlpvMethod {
         if change.geometry_moved || change.vertices_deformed {
             // The cube follows the virtual content (spec §2.12.7: "kept synchronous").
             self.follow(queue, change.geometry);
-            self.stale = true;
-            self.scene_maps_moved = self.scene_maps_moved.union(change.geometry.moved_casters());
+            self.stale = self.stale.union(change.geometry.moved_casters());
         }
         if let Some(layers) = change.moved_light_layers {
             if let Some(rsm) = &mut self.scene_maps {
                 rsm.set_layers(queue, layers);
             }
-            self.stale = true;
-            self.scene_maps_moved = Moved::ALL;
+            self.stale = Moved::ALL;
         }
         // The photo's light in the gathered volumes follows the camera and the photo, and the
         // cells the pixels read (the gathered bounce light) the camera.
@@ -501,13 +497,13 @@ impl LightTransport for DlpvMethod {
         // surfaces' VPLs (vpl_aggregate.wgsl `cell_vpls`) read the last gather's V_ρ, zero
         // before a still's first frame.
         let again = std::mem::take(&mut self.stale_photo) || std::mem::take(&mut self.gather_again);
-        if let (false, true, Some(gather)) = (self.stale, again, &self.vpl_gather) {
+        if let (false, true, Some(gather)) = (self.stale.any(), again, &self.vpl_gather) {
             gather.record(rec);
         }
-        if std::mem::take(&mut self.stale) {
+        let moved = std::mem::take(&mut self.stale);
+        if moved.any() {
             // The scene lights' maps (only those of the casters that moved) and the probe's
             // (which follow the cube) in one raster pass and one resolve pass.
-            let moved = std::mem::take(&mut self.scene_maps_moved);
             let scene_maps: Vec<_> = self.scene_maps.iter().map(|rsm| (rsm, moved)).collect();
             self.probe.record_with(rec, rasterizer, &scene_maps);
             // The VPLs before V_ρ is cleared below (their virtual surfaces read it).
