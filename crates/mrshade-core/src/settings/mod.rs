@@ -179,12 +179,17 @@ pub(crate) fn check_power_of_two(value: u32, lo: u32, hi: u32, field: &str, unit
     )
 }
 
-/// Checks a count of directional lights the probe is split into: 0 or a power of two up to 64.
+/// The most directional lights the probe is split into (`dlpv.probe_lights`,
+/// `dvct.probe_lights`): the per-pixel passes hold their lookups in a uniform array of as many.
+pub const PROBE_LIGHTS_MAX: u32 = 64;
+
+/// Checks a count of directional lights the probe is split into: 0 or a power of two up to
+/// `PROBE_LIGHTS_MAX`.
 pub(crate) fn check_probe_lights(value: u32, field: &str) -> Result<(), String> {
     check(
-        value == 0 || (value.is_power_of_two() && value <= 64),
+        value == 0 || (value.is_power_of_two() && value <= PROBE_LIGHTS_MAX),
         field,
-        format!("must be 0 or a power of two up to 64, got {value}"),
+        format!("must be 0 or a power of two up to {PROBE_LIGHTS_MAX}, got {value}"),
     )
 }
 

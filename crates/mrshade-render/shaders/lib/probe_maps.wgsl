@@ -1,10 +1,16 @@
 // The probe's directional lights and their real-only and virtual-only maps
 // (methods/probe_maps.rs), for shadowing the probe's light at a surface point. The including
-// shader binds, in one group: probe_lookups (array<ProbeLookup>, one per light),
+// shader binds, in one group: probe_lookups (uniform array<ProbeLookup, PROBE_LIGHTS_MAX>),
 // probe_heights (array<f32>: the maps' heights toward their lights, rsm_height) and
 // probe_info (vec4u: lights, map side, the soft test's search reach in texels,
 // probe_maps_soft.wgsl). Needs shaders/lib/lights.wgsl and shaders/lib/probe_light.wgsl
 // before it.
+
+// The most lights a probe is split into (`PROBE_LIGHTS_MAX` of mrshade-core's settings, the
+// most `probe_lights` takes): `probe_lookups` is a uniform array of as many. Uniform, not
+// storage: every invocation reads the same light at once, which a uniform buffer serves as
+// one broadcast.
+const PROBE_LIGHTS_MAX: u32 = 64u;
 
 // One light as a shadow test of its maps reads it (ProbeLookup in probe_maps.rs): every
 // pixel tests every light, so its words are few and made for the test.

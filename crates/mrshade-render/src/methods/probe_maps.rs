@@ -11,7 +11,7 @@ use crate::scene_gpu::{GpuLight, GpuScene, Moved, ShadowLayer, pack_lights};
 use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::flags::Realness;
-use mrshade_core::settings::ShadowSettings;
+use mrshade_core::settings::{PROBE_LIGHTS_MAX, ShadowSettings};
 use mrshade_gpu::shader::compute_pipeline;
 use mrshade_gpu::timing::Recorder;
 use mrshade_gpu::{GpuContext, bind, wgsl};
@@ -294,7 +294,9 @@ impl ProbeMaps {
         let (pairs, mut lookups) = drawn.as_ref().map_or_else(Default::default, |d| (d.2.clone(), d.3.clone()));
         let mut pair_words = pairs.clone();
         pair_words.resize(pairs.len().max(1), UVec4::ZERO);
-        lookups.resize(pairs.len().max(1), ProbeLookup::zeroed());
+        // A uniform array of `PROBE_LIGHTS_MAX` (probe_maps.wgsl), bound whole.
+        debug_assert!(pairs.len() <= PROBE_LIGHTS_MAX as usize, "at most {PROBE_LIGHTS_MAX} probe lights");
+        lookups.resize(PROBE_LIGHTS_MAX as usize, ProbeLookup::zeroed());
         let init = |name: &str, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label}/{name}")),
@@ -306,7 +308,7 @@ impl ProbeMaps {
         let lookups = init(
             "probe_lookups",
             bytemuck::cast_slice(&lookups),
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         );
         let info = UVec4::new(pairs.len() as u32, resolution, soft_search_texels(resolution), 0);
         let info = init("probe_info", bytemuck::bytes_of(&info), wgpu::BufferUsages::UNIFORM);
@@ -371,7 +373,7 @@ impl ProbeMaps {
     pub fn layout_entries(first: u32) -> [wgpu::BindGroupLayoutEntry; 4] {
         let cs = wgpu::ShaderStages::COMPUTE;
         [
-            bind::storage(first, cs),
+            bind::uniform(first, cs),
             bind::storage(first + 1, cs),
             bind::uniform(first + 2, cs),
             bind::storage(first + 3, cs),
@@ -392,5 +394,16 @@ impl ProbeMaps {
             self.info.as_entire_binding(),
             near.as_entire_binding(),
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shaders_hold_as_many_lookups_as_the_settings_allow_lights() {
+        let wgsl = include_str!("../../shaders/lib/probe_maps.wgsl");
+        assert!(wgsl.contains(&format!("const PROBE_LIGHTS_MAX: u32 = {PROBE_LIGHTS_MAX}u;")));
     }
 }

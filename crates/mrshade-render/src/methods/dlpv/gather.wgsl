@@ -27,7 +27,7 @@
 // The accumulated V_ρ, V_Δ, V_μ one after the other, each channel-major.
 @group(1) @binding(0) var<storage, read> volumes: array<vec4f>;
 // The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
-@group(1) @binding(1) var<storage, read> probe_lookups: array<ProbeLookup>;
+@group(1) @binding(1) var<uniform> probe_lookups: array<ProbeLookup, PROBE_LIGHTS_MAX>;
 @group(1) @binding(2) var<storage, read> probe_heights: array<f32>;
 @group(1) @binding(3) var<uniform> probe_info: vec4u;
 @group(1) @binding(4) var<storage, read> probe_heights_near: array<f32>;

@@ -37,7 +37,7 @@
 @group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
 @group(3) @binding(3) var env_sampler: sampler;
 // The probe's directional lights and their maps (shaders/lib/probe_maps.wgsl).
-@group(3) @binding(4) var<storage, read> probe_lookups: array<ProbeLookup>;
+@group(3) @binding(4) var<uniform> probe_lookups: array<ProbeLookup, PROBE_LIGHTS_MAX>;
 @group(3) @binding(5) var<storage, read> probe_heights: array<f32>;
 @group(3) @binding(6) var<uniform> probe_info: vec4u;
 
