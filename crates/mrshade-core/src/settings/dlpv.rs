@@ -128,10 +128,11 @@ pub struct DlpvSettings {
     /// per-part visibility maps (1 024 directions per 2³ cells, visibility.wgsl), which costs a
     /// little of that: cornell 0.1310, desk-bunny 0.1100, desk-spot-real 0.1302,
     /// desk-spot-virtual 0.1110, the variants 0.1130 / 0.1200 / 0.1114. Off by default: it
-    /// costs 0.17–0.33 ms more per moving 1080p frame on an H100 (cornell 1.39 → 1.59 ms,
-    /// desk-spot-virtual 1.47 → 1.80; a march per path instead of the maps, 2.10 and 2.34),
-    /// past the method's 1.5 ms: an option for stills and comparisons (docs/benchmarks.md,
-    /// 2026-12-06).
+    /// costs 0.17–0.32 ms more per moving 1080p frame on an H100 (cornell 1.26 → 1.46 ms,
+    /// desk-bunny 1.00 → 1.18, desk-spot-real 1.31 → 1.48, desk-spot-virtual 1.32 → 1.64;
+    /// a march per path instead of the maps cost 0.5 ms more again), past the method's 1.5 ms
+    /// on desk-spot-virtual: an option for stills and comparisons (docs/benchmarks.md,
+    /// 2026-12-07).
     pub virtual_bounce: bool,
     /// With `dlpv.virtual_bounce`: the paths' test in every cell, not only in V_ρ's; a VPL's
     /// light to a cell that crosses a virtual surface on the way also leaves V_Δ (the real
