@@ -407,16 +407,18 @@ fn spans_to_clear(views: &[(Casters, (u64, u64))], skip: Skip) -> Vec<(u64, u64)
     let mut views: Vec<(bool, (u64, u64))> = views.iter().map(|&(casters, span)| (skip.keeps(casters), span)).collect();
     views.sort_by_key(|&(_, (start, _))| start);
     let mut spans: Vec<(u64, u64)> = Vec::new();
+    // Whether the last view was cleared: this one then extends its range.
     let mut run_open = false;
     for (kept, (start, end)) in views {
-        match spans.last_mut() {
-            _ if kept => run_open = false,
-            Some(last) if run_open => last.1 = last.1.max(end),
-            _ => {
-                spans.push((start, end));
-                run_open = true;
-            }
+        if kept {
+            run_open = false;
+            continue;
         }
+        match spans.last_mut() {
+            Some(last) if run_open => last.1 = last.1.max(end),
+            _ => spans.push((start, end)),
+        }
+        run_open = true;
     }
     spans
 }
