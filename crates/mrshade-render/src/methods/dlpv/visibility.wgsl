@@ -23,12 +23,28 @@ const PART_CELLS: u32 = 2u;
 // blocked it, and a floor beside a block lost its light. (Every cell instead missed crossings:
 // the light of the floor behind a cube came through it, test
 // `a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it`.)
+// A block of 4³ cells without `BLOCK_NEAR_VIRTUAL` (a virtual surface's cell flags the blocks
+// within a cell of it, vpl_aggregate.wgsl `cell_vpls`) holds no plane: the march goes on from
+// its first half-cell step past the block, which finds what stepping through it would.
 fn first_crossing(co: vec3f, dir: vec3f, t_first: f32, t_last: f32) -> f32 {
     let span = box_span(co, dir, vec3f(gather_info.rho_first.xyz), vec3f(gather_info.rho_end.xyz), t_last);
     let h = cell_side();
-    for (var t = max(span.x, t_first); t <= span.y; t += 0.5) {
+    let start = max(span.x, t_first);
+    let blocks = i32(params.info.x / 4u);
+    // Steps of half a cell from `start`: t = start + step / 2.
+    var step = 0.0;
+    for (var t = start; t <= span.y; t = start + 0.5 * step) {
+        step += 1.0;
         let c = vec3i(floor(co + t * dir));
         if (!cell_inside(c)) { continue; }
+        let b = c / 4;
+        if ((blocks_read[(b.z * blocks + b.y) * blocks + b.x] & BLOCK_NEAR_VIRTUAL) == 0u) {
+            // The step at or after the ray's exit from the block (a hair early: a step that
+            // still falls in it comes here again and moves one on).
+            let exit = box_span(co, dir, vec3f(b * 4), vec3f(b * 4 + 4), 1e30).y;
+            step = max(step, ceil(2.0 * (exit - start) - 1e-3));
+            continue;
+        }
         let plane = planes[2u * cell_index(c)];
         if (dot(plane.xyz, plane.xyz) < 0.25) { continue; }
         let before = params.origin.xyz + (co + (t - 0.5) * dir) * h;
