@@ -29,7 +29,7 @@ fn visibility_maps(@builtin(global_invocation_id) id: vec3u) {
     for (var k = 0u; k < 2u; k++) {
         let texel = 2u * id.x + k;
         let uv = (vec2f(f32(texel % MAP_SIDE), f32(texel / MAP_SIDE)) + 0.5) / f32(MAP_SIDE);
-        let t = first_crossing(centre, octahedral_direction(uv), 1.5, 1e30);
+        let t = first_crossing(centre, octahedral_direction(uv), 1.5, 1e30, false);
         let q = u32(min(round(t * MAP_UNITS), f32(NO_CROSSING)));
         word |= q << (16u * k);
     }

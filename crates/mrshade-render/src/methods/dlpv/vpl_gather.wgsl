@@ -47,7 +47,7 @@ fn blocked(a: vec3f, x: vec3f) -> bool {
     let d = x - ca;
     let len = length(d);
     if (len < 3.0) { return false; }
-    return first_crossing(ca, d / len, 1.5, len - 1.5) < 1e29;
+    return first_crossing(ca, d / len, 1.5, len - 1.5, true) < 1e29;
 }
 
 // The same from part `part`'s centre to `a`, read from the part's map where it has one (the
