@@ -35,7 +35,9 @@ fn first_crossing(co: vec3f, dir: vec3f, t_first: f32, t_last: f32, skip_empty: 
     let span = box_span(co, dir, vec3f(gather_info.rho_first.xyz), vec3f(gather_info.rho_end.xyz), t_last);
     let h = cell_side();
     let start = max(span.x, t_first);
-    let blocks = i32(params.info.x / 4u);
+    // The gathered box is the whole volume wherever paths are tested (the bounce gathered), so
+    // the march's cells index its blocks as they are (as visibility_maps.wgsl reads them).
+    let blocks = (gather_info.size.xyz + 3u) / 4u;
     // Steps of half a cell from `start`: t = start + step / 2.
     var step = 0.0;
     for (var t = start; t <= span.y; t = start + 0.5 * step) {
@@ -43,7 +45,7 @@ fn first_crossing(co: vec3f, dir: vec3f, t_first: f32, t_last: f32, skip_empty: 
         let c = vec3i(floor(co + t * dir));
         if (!cell_inside(c)) { continue; }
         let b = c / 4;
-        if (skip_empty && (blocks_read[(b.z * blocks + b.y) * blocks + b.x] & BLOCK_NEAR_VIRTUAL) == 0u) {
+        if (skip_empty && (block_bits(vec3u(b), blocks) & BLOCK_NEAR_VIRTUAL) == 0u) {
             // The step at or after the ray's exit from the block (a hair early: a step that
             // still falls in it comes here again and moves one on).
             let exit = box_span(co, dir, vec3f(b * 4), vec3f(b * 4 + 4), 1e30).y;
