@@ -32,7 +32,6 @@
 //! `cell_vpls`; visibility.rs: per part of 2³ cells a map of how far the planes lie in every
 //! direction); with `dlpv.bounce_visibility` (0.5–0.9 ms more) in every cell.
 
-mod gather_cells;
 mod lights;
 mod params;
 mod propagation;

@@ -37,7 +37,7 @@ fn first_crossing(co: vec3f, dir: vec3f, t_first: f32, t_last: f32, skip_empty: 
     let start = max(span.x, t_first);
     // The gathered box is the whole volume wherever paths are tested (the bounce gathered), so
     // the march's cells index its blocks as they are (as visibility_maps.wgsl reads them).
-    let blocks = gathered_blocks();
+    let blocks = (gather_info.size.xyz + 3u) / 4u;
     // Steps of half a cell from `start`: t = start + step / 2.
     var step = 0.0;
     for (var t = start; t <= span.y; t = start + 0.5 * step) {
@@ -83,9 +83,6 @@ fn part_centre(part: vec3u) -> vec3f { return vec3f(part * PART_CELLS) + 0.5 * f
 // The `BLOCK_*` bits (volume.wgsl) of block `block` of 4³ cells of the gathered box, `blocks`
 // blocks along each axis: the gather sums the blocks a pixel reads or beside a virtual surface,
 // and the maps are written for theirs.
-// The gathered box's blocks of 4³ cells along each axis (gather_cells.rs `GatherInfo::blocks`).
-fn gathered_blocks() -> vec3u { return (gather_info.size.xyz + 3u) / 4u; }
-
 fn block_bits(block: vec3u, blocks: vec3u) -> u32 {
     return blocks_read[(block.z * blocks.y + block.y) * blocks.x + block.x];
 }

@@ -19,7 +19,7 @@ fn visibility_maps(@builtin(global_invocation_id) id: vec3u) {
     let part = map_parts_first() + p;
     if (id.x >= MAP_WORDS || any(part >= map_parts_end())) { return; }
     let block = part * PART_CELLS / 4u;
-    let blocks = gathered_blocks();
+    let blocks = (gather_info.size.xyz + 3u) / 4u;
     if ((block_bits(block, blocks) & (BLOCK_READ | BLOCK_NEAR_VIRTUAL)) == 0u) { return; }
     // Past the maps' room (content grown since the maps were sized): the gather marches.
     let map = part_map(part);

@@ -24,7 +24,7 @@ struct GatherVpl {
     flux: vec4f,
 }
 
-// Mirrors `GatherInfo` in gather_cells.rs: which cells are gathered.
+// Mirrors `GatherInfo` in vpl_gather.rs: which cells are gathered.
 struct GatherInfo {
     // x: chunks of the VPLs; yzw: the first cell gathered
     chunks_first: vec4u,

@@ -213,7 +213,7 @@ fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) 
         gather_block(rho_first + block_of(group.x % rho_count, rho_blocks), chunks + group.x / rho_count, t);
         return;
     }
-    let blocks = gathered_blocks();
+    let blocks = (gather_info.size.xyz + 3u) / 4u;
     let count = blocks.x * blocks.y * blocks.z;
     gather_block(block_of((group.x - extra) % count, blocks), (group.x - extra) / count, t);
 }
@@ -223,11 +223,11 @@ fn block_of(i: u32, blocks: vec3u) -> vec3u {
     return vec3u(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
 }
 
-// V_ρ's blocks in the gathered box: the first, one past the last (gather_cells.rs `GatherInfo::rho_blocks`).
+// V_ρ's blocks in the gathered box: the first, one past the last (vpl_gather.rs `rho_blocks`).
 fn rho_blocks_first() -> vec3u { return (gather_info.rho_first.xyz - gather_info.chunks_first.yzw) / 4u; }
 fn rho_blocks_end() -> vec3u {
     let end = (gather_info.rho_end.xyz - gather_info.chunks_first.yzw + 3u) / 4u;
-    return min(end, gathered_blocks());
+    return min(end, (gather_info.size.xyz + 3u) / 4u);
 }
 
 // Whether `block` of the gathered box is one of V_ρ's (and V_ρ is gathered).
@@ -239,7 +239,7 @@ fn rho_block(block: vec3u) -> bool {
 // of `chunks_first.x` chunks, of `rho_end.w` in V_ρ's blocks.
 fn gather_block(block: vec3u, chunk: u32, t: u32) {
     let size = gather_info.size.xyz;
-    let blocks = gathered_blocks();
+    let blocks = (size + 3u) / 4u;
     let id = block * 4u + vec3u(t % 4u, (t / 4u) % 4u, t / 16u);
     let first_cell = gather_info.chunks_first.yzw + block * 4u;
     let x = params.origin.xyz + (vec3f(id + gather_info.chunks_first.yzw) + 0.5) * cell_side();
@@ -368,8 +368,8 @@ fn gather_sum(@builtin(global_invocation_id) id: vec3u) {
     let in_volume = id + gather_info.chunks_first.yzw;
     // V_ρ's cells, and with the bounce light only the cells the pixels read (of either; all
     // of V_ρ's beside a virtual surface with the virtual surfaces' bounce, as `gather`).
-    let read = bounce_propagated() || block_read(id / 4u, gathered_blocks());
-    let rho = (read || block_near_virtual(id / 4u, gathered_blocks())) && all(in_volume >= gather_info.rho_first.xyz)
+    let read = bounce_propagated() || block_read(id / 4u, (size + 3u) / 4u);
+    let rho = (read || block_near_virtual(id / 4u, (size + 3u) / 4u)) && all(in_volume >= gather_info.rho_first.xyz)
         && all(in_volume < gather_info.rho_end.xyz);
     let bounce = read && !bounce_propagated();
     if (!rho && !bounce) { return; }
