@@ -36,55 +36,29 @@ struct GatherInfo {
     /// xyz: the first cell of V_ρ's (`rho_cells`); w: the index of the first of the virtual
     /// surfaces' cells' VPLs (vpl_aggregate.wgsl `cell_vpls`).
     rho_first: UVec4,
-    /// xyz: one past its last cell; w: the chunks the VPLs of V_ρ's blocks are gathered in
-    /// (`rho_chunks`: `chunks_first.x` and the extra ones of `rho_partials`).
+    /// xyz: one past its last cell; w: unused.
     rho_end: UVec4,
 }
 
 impl GatherInfo {
-    /// `room`: parts with visibility maps along each axis; `cell_base`: the first cell VPL;
-    /// `rho_room`: bytes of `rho_partials`.
+    /// `room`: parts with visibility maps along each axis; `cell_base`: the first cell VPL.
     fn new(
         chunks: u32,
         virtual_box: Option<(Vec3, Vec3)>,
         params: &DlpvParams,
         gathered: u32,
         [room, cell_base]: [u32; 2],
-        rho_room: u64,
     ) -> Self {
         let (first, size) = cells_read(virtual_box, params, gathered);
         let (rho_first, rho_size) = rho_cells(virtual_box, params);
-        let mut info = Self {
+        Self {
             chunks_first: UVec4::from((chunks, first)),
             size: size.extend(room),
             rho_first: rho_first.extend(cell_base),
-            rho_end: (rho_first + rho_size).extend(chunks),
-        };
-        if gathered & GATHERED_RHO != 0 {
-            let [lo, hi] = info.rho_blocks();
-            let cells = (hi - lo).element_product() as u64 * 64;
-            let extra =
-                (rho_room / (cells * partial_cell_bytes(gathered)).max(1)).min(((RHO_SPLIT - 1) * chunks) as u64);
-            info.rho_end.w = chunks + extra as u32;
+            rho_end: (rho_first + rho_size).extend(0),
         }
-        info
-    }
-
-    /// The blocks of 4³ cells of the gathered box that hold V_ρ's cells, the first and one past
-    /// the last (vpl_gather.wgsl `rho_blocks_first`, `rho_blocks_end`).
-    fn rho_blocks(&self) -> [UVec3; 2] {
-        let c = self.chunks_first;
-        let first = UVec3::new(c.y, c.z, c.w);
-        let blocks = (self.size.truncate() + 3) / 4;
-        [(self.rho_first.truncate() - first) / 4, ((self.rho_end.truncate() - first + 3) / 4).min(blocks)]
     }
 }
-
-/// V_ρ's blocks gather the VPLs in up to this many times the chunks of the others: they take
-/// V_ρ's nine coefficients, and with `dlpv.virtual_bounce` the cells' VPLs and the paths'
-/// test, several times the others' work per VPL, and a dispatch lasts as long as its longest
-/// workgroup.
-const RHO_SPLIT: u32 = 4;
 
 /// The volumes gathered (the shaders read them from `DlpvParams::gathered`): V_ρ; V_μ and
 /// V_Δ's indirect change.
@@ -151,10 +125,9 @@ pub(super) fn bytes(pairs_texels: &[(u64, u64)], block: u64, cells: u64, gathere
     let per_block = if gathered & GATHERED_BOUNCE != 0 { VPLS_PER_BLOCK } else { 1 };
     let photo_vpls = PHOTO_TILE_ROWS as u64 * 4 * PHOTO_TILE_ROWS as u64;
     let partial = partial_cell_bytes(gathered);
-    let rho_room = rho_room(cells, partial, chunks(cells, partial), gathered);
     let cell_bytes =
         if gathered & GATHERED_BOUNCE != 0 { cells * (VPLS_PER_CELL * vpl + 32 + PLANE_SUM_BYTES) } else { 0 };
-    (map_vpls * per_block + photo_vpls) * vpl + cell_bytes + chunks(cells, partial) as u64 * cells * partial + rho_room
+    (map_vpls * per_block + photo_vpls) * vpl + cell_bytes + chunks(cells, partial) as u64 * cells * partial
 }
 
 /// Bytes of a cell's sums of the virtual texels in it, per way they face (vpl_aggregate.wgsl
@@ -169,16 +142,6 @@ const VPLS_PER_CELL: u64 = 6;
 /// its lit real texels, its hidden ones the camera does not see and those it sees, and the
 /// virtual texels that hide them.
 const VPLS_PER_BLOCK: u64 = 4;
-
-/// Bytes of `rho_partials`, V_ρ's blocks' extra chunks: up to `RHO_SPLIT` times the others'
-/// where `RHO_PARTIAL_BYTES` holds them (all cells the bound; GatherInfo::new takes as many as
-/// fit the blocks of the frame).
-fn rho_room(cells: u64, partial: u64, chunks: u32, gathered: u32) -> u64 {
-    if gathered & GATHERED_RHO == 0 {
-        return 0;
-    }
-    RHO_PARTIAL_BYTES.min(cells * partial * ((RHO_SPLIT - 1) * chunks) as u64)
-}
 
 /// Chunks the VPLs are gathered in: as many as `PARTIAL_BYTES` of partial sums hold (`partial`
 /// bytes per cell), 1 to 16.
@@ -241,10 +204,6 @@ pub(super) struct VplGather {
     room: u32,
     /// The index of the first cell VPL (`GatherInfo`).
     cell_base: u32,
-    /// Bytes of the partial sums of V_ρ's blocks' extra chunks (GatherInfo `rho_end.w`).
-    rho_room: u64,
-    /// What `info` holds (for the dispatches).
-    info_values: GatherInfo,
 }
 
 /// Bytes of the gather's partial sums at most: the chunks are as many as fit (16 at most).
@@ -252,9 +211,6 @@ pub(super) struct VplGather {
 /// it at 32 MiB; four took the gather from 0.18 to 0.28 ms on cornell at 1080p on the H100
 /// (docs/benchmarks.md, 2026-12-06).
 const PARTIAL_BYTES: u64 = 48 << 20;
-
-/// Bytes of the partial sums of V_ρ's blocks' extra chunks at most (`RHO_SPLIT`).
-const RHO_PARTIAL_BYTES: u64 = 48 << 20;
 
 impl VplGather {
     /// GPU timing label of the maps' and the photo's VPLs.
@@ -303,8 +259,7 @@ impl VplGather {
         let room = if virtual_bounce { map_room(values.info.x, extent) } else { 0 };
         // The cells' VPLs after room for every map's and the photo's.
         let cell_base = map_vpls + tiles[0] * tiles[1];
-        let rho_room = rho_room(cells, partial, chunks, gathered);
-        let info = GatherInfo::new(chunks, virtual_box, values, gathered, [room, cell_base], rho_room);
+        let info = GatherInfo::new(chunks, virtual_box, values, gathered, [room, cell_base]);
         let size = info.size.truncate();
         let gather_info = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("dlpv/vpl_gather_info"),
@@ -478,7 +433,6 @@ impl VplGather {
                 bind::storage_rw(8, cs),
                 bind::storage(9, cs),
                 bind::storage(10, cs),
-                bind::storage_rw(11, cs),
             ],
         );
         let visibility =
@@ -489,12 +443,6 @@ impl VplGather {
         let partials = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("dlpv/vpl_partials"),
             size: chunks as u64 * cells * partial,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        let rho_partials = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("dlpv/vpl_rho_partials"),
-            size: rho_room.max(16),
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
@@ -515,7 +463,6 @@ impl VplGather {
                 rho_band2.as_entire_binding(),
                 planes.as_entire_binding(),
                 visibility.as_ref().map_or(&planes, |v| &v.maps).as_entire_binding(),
-                rho_partials.as_entire_binding(),
             ],
         );
         Self {
@@ -541,8 +488,6 @@ impl VplGather {
             room,
             cell_base,
             rho_first: info.rho_first.truncate(),
-            rho_room,
-            info_values: info,
         }
     }
 
@@ -554,17 +499,9 @@ impl VplGather {
 
     /// The cells read moved with the virtual content (`values`: the volumes' new place).
     pub fn follow(&mut self, queue: &wgpu::Queue, virtual_box: Option<(Vec3, Vec3)>, values: &DlpvParams) {
-        let info = GatherInfo::new(
-            self.chunks,
-            virtual_box,
-            values,
-            self.gathered,
-            [self.room, self.cell_base],
-            self.rho_room,
-        );
+        let info = GatherInfo::new(self.chunks, virtual_box, values, self.gathered, [self.room, self.cell_base]);
         self.rho_first = info.rho_first.truncate();
         self.size = info.size.truncate();
-        self.info_values = info;
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
     }
 
@@ -617,58 +554,9 @@ impl VplGather {
     fn record_gather(&self, pass: &mut wgpu::ComputePass<'_>) {
         pass.set_pipeline(&self.gather);
         pass.set_bind_group(0, &self.gather_group, &[]);
-        // A workgroup per block and chunk, V_ρ's blocks' extra chunks first (vpl_gather.wgsl
-        // `gather`): at most 4 096 blocks × (16 chunks, or 1 and 3 extra) at 64³ cells.
         let blocks = (self.size + 3) / 4;
-        let [first, end] = self.info_values.rho_blocks();
-        let extra = (end - first).element_product() * (self.info_values.rho_end.w - self.chunks);
-        pass.dispatch_workgroups(extra + blocks.element_product() * self.chunks, 1, 1);
+        pass.dispatch_workgroups(blocks.x * blocks.y * blocks.z, self.chunks, 1);
         pass.set_pipeline(&self.gather_sum);
         pass.dispatch_workgroups(blocks.x, blocks.y, blocks.z);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use mrshade_core::settings::DlpvSettings;
-
-    /// `rho_blocks` is the box of the blocks vpl_gather.wgsl's workgroups take as V_ρ's (a
-    /// block whose cells reach V_ρ's box), for every place of a small box in the volume.
-    #[test]
-    fn v_rhos_blocks_are_those_whose_cells_reach_its_box() {
-        let settings = DlpvSettings::default();
-        let params = DlpvParams::new(&settings, Vec3::ZERO, 32.0, 1.0);
-        for (lo, hi) in [(0.2, 3.9), (4.0, 8.0), (5.5, 20.1), (27.0, 31.9), (-3.0, 40.0)] {
-            let virtual_box = Some((Vec3::new(lo, 7.3, 12.0), Vec3::new(hi, 9.0, 12.5)));
-            let info = GatherInfo::new(7, virtual_box, &params, GATHERED_RHO | GATHERED_BOUNCE, [0, 0], 0);
-            let [first, end] = info.rho_blocks();
-            for b in 0..8u32 {
-                let block = UVec3::new(b, b, b);
-                let cell = block * 4;
-                let reaches =
-                    cell.cmplt(info.rho_end.truncate()).all() && (cell + 4).cmpgt(info.rho_first.truncate()).all();
-                assert_eq!(reaches, block.cmpge(first).all() && block.cmplt(end).all(), "box {lo}..{hi}, block {b}");
-            }
-            assert_eq!(info.rho_end.w, 7, "no room: V_ρ's blocks take the others' chunks");
-        }
-    }
-
-    /// V_ρ's blocks take up to `RHO_SPLIT` times the chunks where the room holds them, fewer
-    /// where it holds fewer.
-    #[test]
-    fn v_rhos_blocks_take_as_many_chunks_as_their_room_holds() {
-        let settings = DlpvSettings::default();
-        let params = DlpvParams::new(&settings, Vec3::ZERO, 32.0, 1.0);
-        let gathered = GATHERED_RHO | GATHERED_BOUNCE;
-        let virtual_box = Some((Vec3::splat(10.2), Vec3::splat(13.8)));
-        let chunk_bytes = |info: &GatherInfo| {
-            let [first, end] = info.rho_blocks();
-            (end - first).element_product() as u64 * 64 * partial_cell_bytes(gathered)
-        };
-        let full = GatherInfo::new(7, virtual_box, &params, gathered, [0, 0], u64::MAX);
-        assert_eq!(full.rho_end.w, 7 * RHO_SPLIT);
-        let some = GatherInfo::new(7, virtual_box, &params, gathered, [0, 0], 5 * chunk_bytes(&full) + 1);
-        assert_eq!(some.rho_end.w, 12);
     }
 }

@@ -37,8 +37,6 @@
 // Per part of V_ρ's blocks, its visibility map (visibility_maps.wgsl), with
 // `virtual_bounce`.
 @group(0) @binding(10) var<storage, read> visibility: array<u32>;
-// Per extra chunk of V_ρ's blocks (`gather`), per cell of those blocks, as `partials`.
-@group(0) @binding(11) var<storage, read_write> rho_partials: array<vec4f>;
 
 // Whether the path from `a` (a VPL) to `x` (a cell's centre, in cell coordinates) crosses a
 // virtual surface (visibility.wgsl `first_crossing`). The first and the last cell and a half
@@ -183,8 +181,9 @@ fn block_near_virtual(block: vec3u, blocks: vec3u) -> bool {
 
 fn cells_gathered() -> u32 { return gather_info.size.x * gather_info.size.y * gather_info.size.z; }
 
-// The first VPL and one past the last of chunk `chunk` of `count` in `chunks`.
-fn chunk_range(chunk: u32, count: u32, chunks: u32) -> vec2u {
+// The first VPL and one past the last of chunk `chunk` of `count`.
+fn chunk_range(chunk: u32, count: u32) -> vec2u {
+    let chunks = gather_info.chunks_first.x;
     let per_chunk = (count + chunks - 1u) / chunks;
     let begin = chunk * per_chunk;
     return vec2u(begin, min(begin + per_chunk, count));
@@ -200,46 +199,9 @@ fn chunk_range(chunk: u32, count: u32, chunks: u32) -> vec2u {
 // stay in uniform control flow: an early return crashed lavapipe).
 @compute @workgroup_size(64)
 fn gather(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) t: u32) {
-    // V_ρ's blocks' chunks past the others' first (GatherInfo `rho_end.w`): they take V_ρ's
-    // nine coefficients, and with `dlpv.virtual_bounce` the cells' VPLs and the paths' test,
-    // several times the others' work per VPL. In as many chunks as the others they were the
-    // dispatch's last workgroups (docs/benchmarks.md, 2026-12-07).
-    let chunks = gather_info.chunks_first.x;
-    let rho_first = rho_blocks_first();
-    let rho_blocks = rho_blocks_end() - rho_first;
-    let rho_count = rho_blocks.x * rho_blocks.y * rho_blocks.z;
-    let extra = rho_count * (gather_info.rho_end.w - chunks);
-    if (group.x < extra) {
-        gather_block(rho_first + block_of(group.x % rho_count, rho_blocks), chunks + group.x / rho_count, t);
-        return;
-    }
-    let blocks = (gather_info.size.xyz + 3u) / 4u;
-    let count = blocks.x * blocks.y * blocks.z;
-    gather_block(block_of((group.x - extra) % count, blocks), (group.x - extra) / count, t);
-}
-
-// Block `i` of a box of `blocks` blocks, x fastest.
-fn block_of(i: u32, blocks: vec3u) -> vec3u {
-    return vec3u(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
-}
-
-// V_ρ's blocks in the gathered box: the first, one past the last (vpl_gather.rs `rho_blocks`).
-fn rho_blocks_first() -> vec3u { return (gather_info.rho_first.xyz - gather_info.chunks_first.yzw) / 4u; }
-fn rho_blocks_end() -> vec3u {
-    let end = (gather_info.rho_end.xyz - gather_info.chunks_first.yzw + 3u) / 4u;
-    return min(end, (gather_info.size.xyz + 3u) / 4u);
-}
-
-// Whether `block` of the gathered box is one of V_ρ's (and V_ρ is gathered).
-fn rho_block(block: vec3u) -> bool {
-    return !rho_propagated() && all(block >= rho_blocks_first()) && all(block < rho_blocks_end());
-}
-
-// The sums of block `block`'s cells over chunk `chunk` of the VPLs (uniform in the workgroup):
-// of `chunks_first.x` chunks, of `rho_end.w` in V_ρ's blocks.
-fn gather_block(block: vec3u, chunk: u32, t: u32) {
     let size = gather_info.size.xyz;
     let blocks = (size + 3u) / 4u;
+    let block = vec3u(group.x % blocks.x, (group.x / blocks.x) % blocks.y, group.x / (blocks.x * blocks.y));
     let id = block * 4u + vec3u(t % 4u, (t / 4u) % 4u, t / 16u);
     let first_cell = gather_info.chunks_first.yzw + block * 4u;
     let x = params.origin.xyz + (vec3f(id + gather_info.chunks_first.yzw) + 0.5) * cell_side();
@@ -247,7 +209,8 @@ fn gather_block(block: vec3u, chunk: u32, t: u32) {
     let local = vec3u(t % 4u, (t / 4u) % 4u, t / 16u) / PART_CELLS;
     let parts = 4u / PART_CELLS;
     let my_part = (local.z * parts + local.y) * parts + local.x;
-    let rho = rho_block(block);
+    let rho = !rho_propagated() && all(first_cell < gather_info.rho_end.xyz)
+        && all(first_cell + 4u > gather_info.rho_first.xyz);
     // The bounce light where a pixel reads it; V_ρ where a pixel reads it or, with the virtual
     // surfaces' bounce, beside any virtual surface: the faces the camera does not see pass on
     // their light too (cornell's cube lights the tall block's foot with its side). In all of
@@ -264,7 +227,7 @@ fn gather_block(block: vec3u, chunk: u32, t: u32) {
     // pixel reads them: the faces the camera does not see pass on their light), in every cell
     // with the bounce's visibility (uniform: the workgroup's).
     let tested = bounce && virtual_bounce() && (rho || bounce_visible());
-    let range = chunk_range(chunk, count, select(gather_info.chunks_first.x, gather_info.rho_end.w, rho));
+    let range = chunk_range(group.y, count);
     var r: RhoSums;
     var c: BounceSums;
     for (var first = range.x; first < range.y; first += TILE) {
@@ -312,53 +275,23 @@ fn gather_block(block: vec3u, chunk: u32, t: u32) {
         workgroupBarrier();
     }
     if (any(id >= size)) { return; }
-    let at = partial_at(chunk, id);
+    let at = (group.y * cells_gathered() + (id.z * size.y + id.y) * size.x + id.x) * partial_vectors();
     if (rho) {
-        write_partial(at, r.r);
-        write_partial(at + 1u, r.g);
-        write_partial(at + 2u, r.b);
-        write_partial(at + 3u, r.r2);
-        write_partial(at + 4u, r.g2);
-        write_partial(at + 5u, r.b2);
-        write_partial(at + 6u, r.rgb8);
+        partials[at] = r.r;
+        partials[at + 1u] = r.g;
+        partials[at + 2u] = r.b;
+        partials[at + 3u] = r.r2;
+        partials[at + 4u] = r.g2;
+        partials[at + 5u] = r.b2;
+        partials[at + 6u] = r.rgb8;
     }
     if (!bounce || !read) { return; }
-    write_partial(at + 7u, c.delta_r);
-    write_partial(at + 8u, c.delta_g);
-    write_partial(at + 9u, c.delta_b);
-    write_partial(at + 10u, c.mu_r);
-    write_partial(at + 11u, c.mu_g);
-    write_partial(at + 12u, c.mu_b);
-}
-
-// Where cell `id`'s (of the gathered box) partial sums over chunk `chunk` begin: in `partials`
-// for the first `chunks_first.x` chunks, in `rho_partials` (over the cells of V_ρ's blocks,
-// the chunk less those) for the rest; `PARTIAL_EXTRA` marks the latter.
-const PARTIAL_EXTRA: u32 = 0x80000000u;
-fn partial_at(chunk: u32, id: vec3u) -> u32 {
-    let chunks = gather_info.chunks_first.x;
-    if (chunk < chunks) {
-        let size = gather_info.size.xyz;
-        return (chunk * cells_gathered() + (id.z * size.y + id.y) * size.x + id.x) * partial_vectors();
-    }
-    let first = rho_blocks_first() * 4u;
-    let size = (rho_blocks_end() * 4u) - first;
-    let at = id - first;
-    let cell = (at.z * size.y + at.y) * size.x + at.x;
-    return PARTIAL_EXTRA | (((chunk - chunks) * size.x * size.y * size.z + cell) * partial_vectors());
-}
-
-fn write_partial(at: u32, v: vec4f) {
-    if ((at & PARTIAL_EXTRA) != 0u) {
-        rho_partials[at & ~PARTIAL_EXTRA] = v;
-    } else {
-        partials[at] = v;
-    }
-}
-
-fn read_partial(at: u32) -> vec4f {
-    if ((at & PARTIAL_EXTRA) != 0u) { return rho_partials[at & ~PARTIAL_EXTRA]; }
-    return partials[at];
+    partials[at + 7u] = c.delta_r;
+    partials[at + 8u] = c.delta_g;
+    partials[at + 9u] = c.delta_b;
+    partials[at + 10u] = c.mu_r;
+    partials[at + 11u] = c.mu_g;
+    partials[at + 12u] = c.mu_b;
 }
 
 @compute @workgroup_size(4, 4, 4)
@@ -375,15 +308,14 @@ fn gather_sum(@builtin(global_invocation_id) id: vec3u) {
     if (!rho && !bounce) { return; }
     let h = cell_side();
     let cell = cell_index(vec3i(in_volume));
+    let in_box = (id.z * size.y + id.y) * size.x + id.x;
     let k = partial_vectors();
-    // V_ρ's blocks were gathered in more chunks (`gather`).
-    let chunks = select(gather_info.chunks_first.x, gather_info.rho_end.w, rho_block(id / 4u));
     for (var j = 0u; j < k; j++) {
         if (j < RHO_VECTORS && (rho_propagated() || !rho)) { continue; }
         if (j >= RHO_VECTORS && !bounce) { continue; }
         var c = vec4f(0.0);
-        for (var chunk = 0u; chunk < chunks; chunk++) {
-            c += read_partial(partial_at(chunk, id) + j);
+        for (var chunk = 0u; chunk < gather_info.chunks_first.x; chunk++) {
+            c += partials[(chunk * cells_gathered() + in_box) * k + j];
         }
         c *= h * h;
         if (j >= 3u && j < RHO_VECTORS) {
