@@ -22,6 +22,7 @@ pub mod stream;
 pub mod uniforms;
 
 mod frame;
+mod random;
 mod renderer;
 mod still;
 

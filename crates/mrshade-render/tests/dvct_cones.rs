@@ -93,7 +93,8 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
         let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
         s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
         dvct(&mut s, 32);
-        s.extra_toml += &format!("sample_spacing = {spacing}\n");
+        // The cones of a moving view: the fixed lights (a still's drawn ones: below).
+        s.extra_toml += &format!("sample_spacing = {spacing}\nsample_probe_lights = false\n");
         let r = s.render();
         let visibility = probe_visibility(&r);
         let (mut error, mut count) = (0.0, 0);
@@ -115,6 +116,52 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
         let mean = error / count as f32;
         assert!(mean < 0.06, "spacing {spacing}: the probe visibility is {mean:.3} away from ray casting on average");
     }
+}
+
+#[test]
+fn a_stills_drawn_probe_lights_leave_the_floor_beside_a_cube_the_sky_ray_casting_does() {
+    // While the view holds still each frame draws the probe's 32 lights anew within their
+    // regions (`dvct.sample_probe_lights`), all shadowing through their maps: the mean of the
+    // frames' probe visibility beside a virtual cube under a uniform probe is the share of its
+    // sky that the cube leaves open (each frame's alone is 32 hard shadows). The first frame
+    // (the photo new) keeps the fixed lights.
+    let mut s = Setup::top_down(48);
+    s.probe = Some([0.8, 0.8, 0.8]);
+    let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
+    s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
+    dvct(&mut s, 32);
+    s.extra_toml += "trace_block = 1\n";
+    // Eight frames (the first with the fixed lights), then the mean of 32 more.
+    let mut r = s.render();
+    let (frames, row) = (32, 24usize);
+    let mut mean = [0.0f32; 48];
+    let mut first: Option<Vec<f32>> = None;
+    let mut frames_differ = false;
+    for _ in 0..frames {
+        r.renderer.render_once(&r.ctx).unwrap();
+        let visibility = probe_visibility(&r);
+        let values: Vec<f32> = (0..48).map(|x| visibility.rv[row * 48 + x][0]).collect();
+        for (m, v) in mean.iter_mut().zip(&values) {
+            *m += v / frames as f32;
+        }
+        frames_differ |= first.as_ref().is_some_and(|f| *f != values);
+        first.get_or_insert(values);
+    }
+    let (mut error, mut count) = (0.0, 0);
+    for (x, rendered) in mean.iter().enumerate() {
+        let p = r.world_on_plane(x as u32, row as u32, 0.0);
+        if p.x.abs() < half + 0.02 || p.x.abs() > 0.18 {
+            continue;
+        }
+        let cast = sky_left_by_cube(p, centre, half);
+        eprintln!("x {:.3}: mean of {frames} frames {rendered:.3}, ray cast {cast:.3}", p.x);
+        error += (rendered - cast).abs();
+        count += 1;
+    }
+    assert!(count >= 6, "{count} pixels beside the cube");
+    let mean_error = error / count as f32;
+    assert!(mean_error < 0.02, "the still's probe visibility is {mean_error:.3} away from ray casting on average");
+    assert!(frames_differ, "the frames drew no new lights");
 }
 
 #[test]
@@ -165,7 +212,8 @@ fn cones_traced_once_per_block_give_each_pixel_its_own_surfaces_light() {
         s.plane(2.0, 0.0, 0.5, true).cube([0.0, 0.1, 0.0], 0.1, false);
         s.light(serde_json::json!({"type": "point", "intensity": 0.3}), [0.25, 0.6, 0.0], true);
         dvct(&mut s, 32);
-        s.extra_toml += &format!("trace_block = {block}\n");
+        // The fixed lights: a still's drawn ones differ from frame to frame.
+        s.extra_toml += &format!("trace_block = {block}\nsample_probe_lights = false\n");
         let r = s.render();
         let method = dvct_method(&r);
         let light = method.indirect.read_light(&r.ctx).unwrap().rv;

@@ -82,14 +82,17 @@ impl Method {
     /// bounces build up over the first frames and whose still-scene smoothing then averages
     /// the VPLs of about 250 frames (`dir.temporal.static_confidence`), the last 128 frames'
     /// composites being averaged with sub-pixel jitter. Milliseconds on a GPU; minutes on
-    /// lavapipe. Eight for `dvct` and `dlpv`, which draw no random samples: the last four,
-    /// jittered, anti-alias the virtual objects' edges and smooth the cones' blocks, as a path
-    /// tracer's pixel is a mean over its area (desk-spot-real's region FLIP 0.121 → 0.114 for
-    /// `dvct`; sixteen frames gain nothing more).
+    /// lavapipe. Eight for `dlpv`, which draws no random samples: the last four, jittered,
+    /// anti-alias the virtual objects' edges and smooth its blocks, as a path tracer's pixel is
+    /// a mean over its area (`dvct`'s desk-spot-real 0.121 → 0.114 when it drew none either;
+    /// sixteen frames gained nothing more). 64 for `dvct`, whose still frames draw the probe's
+    /// lights anew (`dvct.sample_probe_lights`): the last 32 average 1024 directions of the
+    /// probe (desk-bunny's region FLIP 0.0676 at 32 frames, 0.0615 at 64, 0.0582 at 128).
     pub fn default_still_frames(self) -> u32 {
         match self {
             Method::Direct => 1,
-            Method::Dvct | Method::Dlpv => 8,
+            Method::Dlpv => 8,
+            Method::Dvct => 64,
             Method::Dir => 256,
         }
     }

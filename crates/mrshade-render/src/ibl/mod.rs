@@ -12,7 +12,7 @@ mod prefilter;
 mod pyramid;
 
 pub use irradiance::irradiance_map;
-pub use lights::{probe_lights, probe_lights_with_spread};
+pub use lights::{ProbeRegions, probe_lights, probe_lights_with_spread};
 pub use prefilter::prefiltered_radiance;
 pub use pyramid::EquirectPyramid;
 

@@ -170,6 +170,10 @@ pub fn bounding_radius(bounds: Option<(Vec3, Vec3)>) -> f32 {
 pub struct ProbeMaps {
     /// The lights and their maps; `None` without a probe or with no lights asked for.
     drawn: Option<(ProbeSet, RsmPass)>,
+    /// The lights as given, which `sample_lights(None)` restores.
+    given: Vec<Light>,
+    /// Whether the lights are drawn samples (`sample_lights`): points, whose shadows are sharp.
+    sampled: bool,
     /// Per light: (real-only layer, virtual-only layer, light, its angular radius as f32 bits).
     pair_list: Vec<UVec4>,
     /// The same on the GPU (`dlpv`'s injection reads them).
@@ -282,6 +286,7 @@ impl ProbeMaps {
         let device = &ctx.device;
         let spreads: Vec<f32> = lights.iter().map(|(_, spread)| *spread).collect();
         let lights: Vec<Light> = lights.into_iter().map(|(light, _)| light).collect();
+        let given = lights.clone();
         let drawn = (!lights.is_empty()).then(|| {
             let (set, gpu_lights, layers) = ProbeSet::new(device, label, lights, cube, scene_box, shadows);
             let rsm = RsmPass::new(ctx, rasterizer, scene, &set.buffer, &layers, resolution, shadows.resolution, false);
@@ -317,6 +322,8 @@ impl ProbeMaps {
         Self {
             near,
             drawn: drawn.map(|(set, rsm, _, _)| (set, rsm)),
+            given,
+            sampled: false,
             pair_list: pairs,
             pairs: pairs_buffer,
             lookups,
@@ -338,9 +345,31 @@ impl ProbeMaps {
         if let Some((set, rsm)) = &mut self.drawn {
             let (gpu_lights, layers) = set.follow(queue, cube, scene_box, shadows);
             rsm.set_layers(queue, &layers);
-            let lookups = probe_lookups(&gpu_lights, &layers, &self.pair_list, self.resolution, self.shadow_resolution);
+            // Sampled lights are points: every one casts a sharp shadow (angular radius 0).
+            let pairs: Vec<UVec4> =
+                self.pair_list.iter().map(|p| if self.sampled { UVec4 { w: 0, ..*p } } else { *p }).collect();
+            let lookups = probe_lookups(&gpu_lights, &layers, &pairs, self.resolution, self.shadow_resolution);
             queue.write_buffer(&self.lookups, 0, bytemuck::cast_slice(&lookups));
         }
+    }
+
+    /// Replaces the lights by `samples` (as many, in the same order: `ProbeRegions::sampled`),
+    /// points whose shadows are all sharp, or with `None` restores the lights given to `new`
+    /// with their angular radii; the maps then need drawing again (`record`). The mean of the
+    /// maps' shadow tests over many samples is each region's power-weighted visibility.
+    pub fn sample_lights(
+        &mut self,
+        queue: &wgpu::Queue,
+        samples: Option<Vec<Light>>,
+        cube: (Vec3, Vec3),
+        scene_box: Option<(Vec3, Vec3)>,
+        shadows: &ShadowSettings,
+    ) {
+        let Some((set, _)) = &mut self.drawn else { return };
+        self.sampled = samples.is_some();
+        set.lights = samples.unwrap_or_else(|| self.given.clone());
+        debug_assert_eq!(set.lights.len(), self.given.len(), "one sample per light");
+        self.follow(queue, cube, scene_box, shadows);
     }
 
     /// Draws the maps.

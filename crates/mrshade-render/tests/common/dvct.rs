@@ -5,10 +5,11 @@ use super::{Rendered, Setup};
 use mrshade_core::Differential;
 use mrshade_render::methods::dvct::DvctMethod;
 
-/// Makes `s` a `dvct` session of `resolution`³ voxels.
+/// Makes `s` a `dvct` session of `resolution`³ voxels, rendered for eight frames (a still's
+/// 64 are for the mean of its last half; these tests read the last frame).
 pub fn dvct(s: &mut Setup, resolution: u32) {
     s.top_toml = "method = \"dvct\"\n".into();
-    s.extra_toml += &format!("[dvct]\nresolution = {resolution}\n");
+    s.extra_toml += &format!("[output]\nframes = 8\n[dvct]\nresolution = {resolution}\n");
 }
 
 /// The `dvct` method of a render.

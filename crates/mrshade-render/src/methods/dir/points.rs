@@ -3,6 +3,7 @@
 //! to VPL `i / points_per_vpl`, so every VPL's ISM is drawn from its own random subset.
 //! They are also the candidate VPL positions of the multiple-bounce source (§2.8).
 
+use crate::random::Pcg32;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use mrshade_core::flags::Realness;
@@ -124,32 +125,6 @@ impl PointCloud {
             }
         }
         Self { points, anchors, area }
-    }
-}
-
-/// PCG-XSH-RR: small, well-distributed and reproducible.
-struct Pcg32 {
-    state: u64,
-}
-
-impl Pcg32 {
-    fn new(seed: u64) -> Self {
-        let mut r = Self { state: 0 };
-        r.next_u32();
-        r.state = r.state.wrapping_add(seed);
-        r.next_u32();
-        r
-    }
-
-    fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        xorshifted.rotate_right((old >> 59) as u32)
-    }
-
-    fn next_f64(&mut self) -> f64 {
-        self.next_u32() as f64 / 4_294_967_296.0
     }
 }
 

@@ -13,7 +13,9 @@
 // shadow the answer has, which nine wide cones blur into a faint one (and a wall one voxel
 // thick lets partly through); a broad sky's lights, whose 32 hard shadows would band where the
 // answer's is soft, stay with the cones. The virtual content's shadow on real surfaces takes
-// the maps' only for the narrowest lights (half that width).
+// the maps' only for the narrowest lights (half that width). A still view's lights are drawn
+// anew each frame (`dvct.sample_probe_lights`) as points (angular radius 0): their maps then
+// shadow all of the probe's light, and the frames' mean is its exact soft shadow.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: VolumeParams;

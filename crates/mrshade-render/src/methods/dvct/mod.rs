@@ -16,7 +16,10 @@
 //! the voxels, `dvct.photo_voxels`, photo.wgsl); the mipmaps are anisotropic, a chain per way
 //! along each axis ([CNS+11]), and a voxel shows its light only on its own side (mips.wgsl);
 //! the probe's light from its narrower lights is shadowed through their maps
-//! (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl);
+//! (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl),
+//! and while the view holds still each frame draws those lights anew within their regions,
+//! every one shadowing through its maps, so that a still's mean is the probe's exact
+//! visibility (`dvct.sample_probe_lights`, `ibl::ProbeRegions::sampled`);
 //! and the virtual content's change along a cone, which covers the same part of the cone
 //! sample after sample, lies between compounding its samples and taking the most opaque one
 //! (cones.wgsl `probe_occlusion`, `cone_seen`).
@@ -33,6 +36,7 @@ use cascade::{Cascade, VOXEL_BYTES};
 
 use super::probe_maps::ProbeMaps;
 use super::{FrameChange, IndirectLight, LightTransport, MethodInputs};
+use crate::ibl::ProbeRegions;
 use crate::limits::Fit;
 use crate::passes::direct::ShadowParams;
 use crate::raster::Rasterizer;
@@ -106,6 +110,15 @@ pub struct DvctMethod {
     stale_photo: bool,
     /// `dvct.photo_voxels`.
     photo_voxels: bool,
+    /// The probe's regions to draw its lights from while the view holds still
+    /// (`dvct.sample_probe_lights`).
+    probe_regions: Option<ProbeRegions>,
+    /// Frames since anything changed (0: this one did).
+    still_frames: u32,
+    /// The probe's lights are drawn samples (`ProbeMaps::sample_lights`).
+    sampling: bool,
+    /// The probe's maps need drawing again (new lights, or the content moved).
+    stale_probe_maps: bool,
 }
 
 /// Builds the method (the registry's `build`).
@@ -435,6 +448,14 @@ impl DvctMethod {
             stale_light: true,
             stale_photo: false,
             photo_voxels: settings.photo_voxels,
+            probe_regions: session
+                .environment
+                .as_ref()
+                .filter(|_| settings.sample_probe_lights && settings.probe_lights > 0)
+                .map(|env| ProbeRegions::new(env, settings.probe_lights)),
+            still_frames: 0,
+            sampling: false,
+            stale_probe_maps: true,
         }
     }
 
@@ -494,14 +515,34 @@ impl LightTransport for DvctMethod {
             self.stale_voxels = true;
         }
         self.stale_light |= self.stale_voxels || change.moved_light_layers.is_some();
+        self.stale_probe_maps |= self.stale_voxels;
+        let moved = change.geometry_moved
+            || change.vertices_deformed
+            || change.moved_light_layers.is_some()
+            || change.camera_moved
+            || change.photo_changed;
+        self.still_frames = if moved { 0 } else { self.still_frames + 1 };
+        // A still view draws the probe's lights anew each frame (`dvct.sample_probe_lights`),
+        // a moving one keeps the fixed ones.
+        if let Some(regions) = &self.probe_regions {
+            let sampling = self.still_frames > 0;
+            if sampling || self.sampling {
+                let samples = sampling.then(|| regions.sampled(self.still_frames));
+                self.probe_maps.sample_lights(queue, samples, self.cascades[0].cube(), self.scene_box, &self.shadows);
+                self.stale_probe_maps = true;
+                self.sampling = sampling;
+            }
+        }
         // The photo's light in the real voxels (photo.wgsl) follows the photo and what the
         // camera sees: the photo pass runs again (with one bounce, the light pass).
         self.stale_photo |= self.photo_voxels && (change.photo_changed || change.camera_moved);
     }
 
     fn record(&mut self, rec: &mut Recorder, rasterizer: &Rasterizer) {
-        if std::mem::take(&mut self.stale_voxels) {
+        if std::mem::take(&mut self.stale_probe_maps) {
             self.probe_maps.record(rec, rasterizer);
+        }
+        if std::mem::take(&mut self.stale_voxels) {
             rec.compute(Self::VOXELIZE_LABEL, |pass| {
                 for (c, group) in self.cascades.iter().zip(&self.voxelize_groups) {
                     pass.set_bind_group(0, group, &[]);
