@@ -4,8 +4,8 @@
 
 mod common;
 
-use common::Setup;
 use common::dvct::{dvct, dvct_method, probe_visibility};
+use common::{Rendered, Setup};
 use glam::Vec3;
 
 #[test]
@@ -88,34 +88,52 @@ fn the_probe_light_a_cube_leaves_on_the_floor_beside_it_matches_ray_casting() {
     // three times as far apart (`dvct.sample_spacing`; 1.5 is the second bounce's), each
     // compounding its opacity over the length it stands for, must hide the same share.
     for spacing in [0.5, 1.0, 1.5] {
-        let mut s = Setup::top_down(48);
-        s.probe = Some([0.8, 0.8, 0.8]);
-        let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
-        s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
-        dvct(&mut s, 32);
+        let mut s = cube_under_uniform_sky();
         // The cones of a moving view: the fixed lights (a still's drawn ones: below).
         s.extra_toml += &format!("sample_spacing = {spacing}\nsample_probe_lights = false\n");
         let r = s.render();
         let visibility = probe_visibility(&r);
-        let (mut error, mut count) = (0.0, 0);
-        for x in 0..48 {
-            let p = r.world_on_plane(x, 24, 0.0);
-            // Beside the cube, inside the volume (±0.2 m).
-            if p.x.abs() < half + 0.02 || p.x.abs() > 0.18 {
-                continue;
-            }
-            let i = (24 * 48 + x) as usize;
+        let mean = error_beside_cube(&r, &format!("spacing {spacing}"), |x| {
+            let i = BESIDE_ROW * 48 + x;
             assert!(visibility.r[i][0] > 0.999, "the floor alone hides none of its own sky");
-            let rendered = visibility.rv[i][0];
-            let cast = sky_left_by_cube(p, centre, half);
-            eprintln!("spacing {spacing}, x {:.3}: rendered {rendered:.3}, ray cast {cast:.3}", p.x);
-            error += (rendered - cast).abs();
-            count += 1;
-        }
-        assert!(count >= 6, "{count} pixels beside the cube");
-        let mean = error / count as f32;
+            visibility.rv[i][0]
+        });
         assert!(mean < 0.06, "spacing {spacing}: the probe visibility is {mean:.3} away from ray casting on average");
     }
+}
+
+/// The virtual cube of side 0.2 m at `CUBE_CENTRE` on a real floor under a uniform probe,
+/// seen from above (48² pixels) by `dvct` at 32³ voxels.
+fn cube_under_uniform_sky() -> Setup {
+    let mut s = Setup::top_down(48);
+    s.probe = Some([0.8, 0.8, 0.8]);
+    s.plane(2.0, 0.0, 0.5, true).cube(CUBE_CENTRE.to_array(), CUBE_HALF, false);
+    dvct(&mut s, 32);
+    s
+}
+
+const CUBE_CENTRE: Vec3 = Vec3::new(0.0, 0.1, 0.0);
+const CUBE_HALF: f32 = 0.1;
+/// The image row through the cube's centre.
+const BESIDE_ROW: usize = 24;
+
+/// Mean |rendered − ray cast| of the probe's visibility over the floor pixels of `BESIDE_ROW`
+/// beside the cube of `cube_under_uniform_sky`, inside its volume (±0.2 m): `rendered(x)`
+/// the rendered share at pixel x, the ray cast's `sky_left_by_cube`.
+fn error_beside_cube(r: &Rendered, label: &str, rendered: impl Fn(usize) -> f32) -> f32 {
+    let (mut error, mut count) = (0.0, 0);
+    for x in 0..48 {
+        let p = r.world_on_plane(x as u32, BESIDE_ROW as u32, 0.0);
+        if p.x.abs() < CUBE_HALF + 0.02 || p.x.abs() > 0.18 {
+            continue;
+        }
+        let (rendered, cast) = (rendered(x), sky_left_by_cube(p, CUBE_CENTRE, CUBE_HALF));
+        eprintln!("{label}, x {:.3}: rendered {rendered:.3}, ray cast {cast:.3}", p.x);
+        error += (rendered - cast).abs();
+        count += 1;
+    }
+    assert!(count >= 6, "{count} pixels beside the cube");
+    error / count as f32
 }
 
 #[test]
@@ -125,41 +143,25 @@ fn a_stills_drawn_probe_lights_leave_the_floor_beside_a_cube_the_sky_ray_casting
     // frames' probe visibility beside a virtual cube under a uniform probe is the share of its
     // sky that the cube leaves open (each frame's alone is 32 hard shadows). The first frame
     // (the photo new) keeps the fixed lights.
-    let mut s = Setup::top_down(48);
-    s.probe = Some([0.8, 0.8, 0.8]);
-    let (centre, half) = (Vec3::new(0.0, 0.1, 0.0), 0.1);
-    s.plane(2.0, 0.0, 0.5, true).cube(centre.to_array(), half, false);
-    dvct(&mut s, 32);
+    let mut s = cube_under_uniform_sky();
     s.extra_toml += "trace_block = 1\n";
     // Eight frames (the first with the fixed lights), then the mean of 32 more.
     let mut r = s.render();
-    let (frames, row) = (32, 24usize);
+    let frames = 32;
     let mut mean = [0.0f32; 48];
     let mut first: Option<Vec<f32>> = None;
     let mut frames_differ = false;
     for _ in 0..frames {
         r.renderer.render_once(&r.ctx).unwrap();
         let visibility = probe_visibility(&r);
-        let values: Vec<f32> = (0..48).map(|x| visibility.rv[row * 48 + x][0]).collect();
+        let values: Vec<f32> = (0..48).map(|x| visibility.rv[BESIDE_ROW * 48 + x][0]).collect();
         for (m, v) in mean.iter_mut().zip(&values) {
             *m += v / frames as f32;
         }
         frames_differ |= first.as_ref().is_some_and(|f| *f != values);
         first.get_or_insert(values);
     }
-    let (mut error, mut count) = (0.0, 0);
-    for (x, rendered) in mean.iter().enumerate() {
-        let p = r.world_on_plane(x as u32, row as u32, 0.0);
-        if p.x.abs() < half + 0.02 || p.x.abs() > 0.18 {
-            continue;
-        }
-        let cast = sky_left_by_cube(p, centre, half);
-        eprintln!("x {:.3}: mean of {frames} frames {rendered:.3}, ray cast {cast:.3}", p.x);
-        error += (rendered - cast).abs();
-        count += 1;
-    }
-    assert!(count >= 6, "{count} pixels beside the cube");
-    let mean_error = error / count as f32;
+    let mean_error = error_beside_cube(&r, &format!("mean of {frames} frames"), |x| mean[x]);
     assert!(mean_error < 0.02, "the still's probe visibility is {mean_error:.3} away from ray casting on average");
     assert!(frames_differ, "the frames drew no new lights");
 }

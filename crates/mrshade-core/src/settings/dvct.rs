@@ -75,9 +75,9 @@ pub struct DvctSettings {
     /// a broad sky that 32 fixed directions band and nine wide cones blur (the bunny's on its
     /// desk too dark around it and too light at its foot). Moving frames keep the fixed
     /// lights. A still of 64 frames (`output.frames`, the default for `dvct`): desk-bunny's
-    /// region FLIP 0.0795 → 0.0615, desk-spot-real 0.0786 → 0.0762, desk-spot-virtual 0.0909
-    /// → 0.0869, cornell 0.1322 → 0.1353 (docs/benchmarks.md); a still frame's maps cost
-    /// 0.19 ms at 1080p on an H100. Default true.
+    /// region FLIP 0.0795 → 0.0618, desk-spot-real 0.0786 → 0.0761, desk-spot-virtual 0.0909
+    /// → 0.0857, cornell 0.1322 → 0.1351 (docs/benchmarks.md); a still frame's maps cost
+    /// about 0.2 ms at 1080p on an H100. Default true.
     pub sample_probe_lights: bool,
     /// Side of the maps of the probe's lights (a power of two, 32–2048). Default 128 (as
     /// `dlpv.probe_rsm_resolution`; 256 needs 336 MB in one buffer, more than many devices bind).

@@ -87,7 +87,8 @@ impl Method {
     /// a mean over its area (`dvct`'s desk-spot-real 0.121 → 0.114 when it drew none either;
     /// sixteen frames gained nothing more). 64 for `dvct`, whose still frames draw the probe's
     /// lights anew (`dvct.sample_probe_lights`): the last 32 average 1024 directions of the
-    /// probe (desk-bunny's region FLIP 0.0676 at 32 frames, 0.0615 at 64, 0.0582 at 128).
+    /// probe (desk-bunny's region FLIP 0.0618 at 64 frames; with independent random
+    /// directions 0.0676 at 32, 0.0615 at 64, 0.0582 at 128).
     pub fn default_still_frames(self) -> u32 {
         match self {
             Method::Direct => 1,

@@ -53,11 +53,13 @@ impl ProbeRegions {
     pub fn new(env: &Environment, count: u32) -> Self {
         let width = env.image.width.clamp(4, CUT_WIDTH);
         let image = env.image.resized(width, width / 2);
-        let mut regions = vec![Region { x0: 0, x1: image.width, y0: 0, y1: image.height }];
-        while count > 0 && (regions.len() as u32) < count {
+        let mut regions = Vec::new();
+        if count > 0 {
+            regions.push(Region { x0: 0, x1: image.width, y0: 0, y1: image.height });
+        }
+        while !regions.is_empty() && (regions.len() as u32) < count {
             regions = regions.iter().flat_map(|r| split(&image, *r)).collect();
         }
-        let regions = if count == 0 { Vec::new() } else { regions };
         let regions = regions
             .into_iter()
             .filter_map(|r| {

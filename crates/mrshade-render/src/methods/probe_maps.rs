@@ -372,6 +372,11 @@ impl ProbeMaps {
         self.follow(queue, cube, scene_box, shadows);
     }
 
+    /// Whether the lights are drawn samples (`sample_lights`).
+    pub fn sampled(&self) -> bool {
+        self.sampled
+    }
+
     /// Draws the maps.
     pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         self.record_with(rec, rasterizer, &[]);

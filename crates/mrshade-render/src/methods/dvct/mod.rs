@@ -115,8 +115,6 @@ pub struct DvctMethod {
     probe_regions: Option<ProbeRegions>,
     /// Frames since anything changed (0: this one did).
     still_frames: u32,
-    /// The probe's lights are drawn samples (`ProbeMaps::sample_lights`).
-    sampling: bool,
     /// The probe's maps need drawing again (new lights, or the content moved).
     stale_probe_maps: bool,
 }
@@ -454,7 +452,6 @@ impl DvctMethod {
                 .filter(|_| settings.sample_probe_lights && settings.probe_lights > 0)
                 .map(|env| ProbeRegions::new(env, settings.probe_lights)),
             still_frames: 0,
-            sampling: false,
             stale_probe_maps: true,
         }
     }
@@ -526,11 +523,10 @@ impl LightTransport for DvctMethod {
         // a moving one keeps the fixed ones.
         if let Some(regions) = &self.probe_regions {
             let sampling = self.still_frames > 0;
-            if sampling || self.sampling {
+            if sampling || self.probe_maps.sampled() {
                 let samples = sampling.then(|| regions.sampled(self.still_frames));
                 self.probe_maps.sample_lights(queue, samples, self.cascades[0].cube(), self.scene_box, &self.shadows);
                 self.stale_probe_maps = true;
-                self.sampling = sampling;
             }
         }
         // The photo's light in the real voxels (photo.wgsl) follows the photo and what the
