@@ -449,3 +449,40 @@ fn a_virtual_balls_rays_gather_the_light_of_the_lit_floor_below_it_as_the_path_t
         "the rays ({rays:.3}) are no nearer the answer than the cones ({cones:.3})"
     );
 }
+
+#[test]
+fn pixels_that_no_block_is_like_trace_their_own_cones() {
+    // A ball resting on a floor in blocks of 4 × 4 pixels: around its rim and where it meets
+    // the floor the texels around a pixel face elsewhere or lie at another depth, and the
+    // resolve's blend gave the pixel their light. Listed for a trace of its own
+    // (`dvct.retrace_likeness`), such a pixel has exactly the light a trace per pixel gives it
+    // (the same cones, turned as its own texel), and the worst pixels come close to it.
+    let render = |block: u32, likeness: f32| {
+        let mut s = ball_over_floor(0.05, 32, [-0.3, 0.4, 0.0]);
+        s.extra_toml += &format!("trace_block = {block}\nretrace_likeness = {likeness}\n");
+        let r = s.render();
+        dvct_method(&r).indirect.read_light(&r.ctx).unwrap().rv
+    };
+    let full = render(1, 0.8);
+    let scale = full.pixels.iter().map(|p| p[0]).fold(0.0, f32::max);
+    let errors = |likeness: f32| {
+        let blocks = render(4, likeness);
+        let mut e: Vec<f32> =
+            full.pixels.iter().zip(&blocks.pixels).map(|(a, b)| (a[0] - b[0]).abs() / scale).collect();
+        e.sort_by(f32::total_cmp);
+        e
+    };
+    let (blended, retraced) = (errors(0.0), errors(0.8));
+    let exact = |e: &[f32]| e.iter().filter(|&&x| x < 1e-6).count();
+    let worst = |e: &[f32]| (e[e.len() * 999 / 1000], e[e.len() - 1]);
+    eprintln!(
+        "exactly the per-pixel light: {} pixels blended, {} retraced; 99.9th percentile and max |Δ|: {:.3?} blended, {:.3?} retraced",
+        exact(&blended),
+        exact(&retraced),
+        worst(&blended),
+        worst(&retraced)
+    );
+    // The ball's outline is about 90 pixels long.
+    assert!(exact(&retraced) > exact(&blended) + 50, "{} → {} exact pixels", exact(&blended), exact(&retraced));
+    assert!(worst(&retraced).0 < 0.5 * worst(&blended).0, "{:?} → {:?}", worst(&blended), worst(&retraced));
+}

@@ -93,6 +93,14 @@ pub struct DvctSettings {
     /// cone does per voxel they cross: 32 took a moving 1080p frame on an H100 1.8–3.0 ms
     /// longer (16: 0.8–1.4 ms), past the method's 3 ms. Default 0: the cones (the thesis).
     pub virtual_rays: u32,
+    /// A pixel whose likest trace texel around it (of those the resolve blends:
+    /// `geometry_weight` of depth and normal, 1 for the texel traced from the pixel itself)
+    /// is less alike than this traces its own cones after the resolve. The texels are traced
+    /// from one pixel of each `trace_block`² block; at a silhouette, a crease or an object's
+    /// rim where it meets the desk the texels around a pixel face elsewhere, and the blend
+    /// gave a bunny's underside the light of its front (desk-bunny's region FLIP 0.0618;
+    /// traced per pixel 0.0568). 0.8 lists about 1 % of the pixels; 0 turns it off.
+    pub retrace_likeness: f32,
 }
 
 impl Default for DvctSettings {
@@ -112,6 +120,7 @@ impl Default for DvctSettings {
             sample_probe_lights: true,
             probe_map_resolution: 128,
             virtual_rays: 0,
+            retrace_likeness: 0.8,
         }
     }
 }
@@ -162,6 +171,11 @@ impl DvctSettings {
             "dvct.virtual_rays",
             format!("must be at most 256 rays (0: the nine cones), got {}", self.virtual_rays),
         )?;
+        check(
+            (0.0..=1.0).contains(&self.retrace_likeness),
+            "dvct.retrace_likeness",
+            format!("must be from 0 (off) to 1, got {}", self.retrace_likeness),
+        )?;
         check_power_of_two(self.probe_map_resolution, 32, 2048, "dvct.probe_map_resolution", " texels")
     }
 }
@@ -194,6 +208,10 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("dvct.probe_map_resolution"));
         let bad = DvctSettings { virtual_rays: 257, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.virtual_rays"));
+        for likeness in [-0.1, 1.5, f32::NAN] {
+            let bad = DvctSettings { retrace_likeness: likeness, ..Default::default() };
+            assert!(bad.validate().unwrap_err().contains("dvct.retrace_likeness"));
+        }
         DvctSettings::default().validate().unwrap();
     }
 }

@@ -50,27 +50,18 @@ fn specular_aperture(roughness: f32) -> f32 {
     return clamp(2.0 * alpha, 1.0 / f32(params.info.x), 1.5);
 }
 
-@compute @workgroup_size(8, 8)
-fn cs_main(@builtin(global_invocation_id) id: vec3u) {
-    let texel = vec2i(id.xy);
-    if (any(texel >= trace_size())) { return; }
-    let pixel = representative(texel);
-    if (pixel.x < 0) {
-        store_no_indirect(texel);
-        textureStore(out_glossy_rv, texel, vec4f(0.0));
-        textureStore(out_glossy_r, texel, vec4f(0.0));
-        return;
-    }
-    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+// The cones of the surface seen in `pixel` (covered, of G-buffer `flags`), their cone frame
+// turned by `turn`.
+fn trace_pixel(pixel: vec2i, flags: u32, turn: f32) -> Traced {
     let s = pixel_surface(pixel);
     let m = materials[material_of(flags)];
     // Virtual surfaces gather with thin rays where `dvct.virtual_rays` asks for them
     // (cones.wgsl gather_rays), real ones with the cones: they make up most of the frame.
     var e: Gathered;
     if (VIRTUAL_RAYS > 0u && !is_real(flags)) {
-        e = gather_rays(s.position, s.normal, cone_turn(texel));
+        e = gather_rays(s.position, s.normal, turn);
     } else {
-        e = gather_diffuse(s.position, s.normal, pixel_spacing(), cone_turn(texel));
+        e = gather_diffuse(s.position, s.normal, pixel_spacing(), turn);
     }
     // Zero-initialised: no glossy light on traced surfaces.
     var glossy: Cone;
@@ -109,7 +100,45 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         }
         env.env = units;
     }
-    store_indirect(texel, env.rv, env.r, env.env_rv, env.env_r, env.env);
-    textureStore(out_glossy_rv, texel, vec4f(glossy.rv.rgb, 1.0));
-    textureStore(out_glossy_r, texel, vec4f(glossy.r.rgb, 1.0));
+    return Traced(e.rv, e.r, env.env_rv, env.env_r, env.env, glossy.rv.rgb, glossy.r.rgb);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3u) {
+    let texel = vec2i(id.xy);
+    if (any(texel >= trace_size())) { return; }
+    let pixel = representative(texel);
+    if (pixel.x < 0) {
+        store_no_indirect(texel);
+        textureStore(out_glossy_rv, texel, vec4f(0.0));
+        textureStore(out_glossy_r, texel, vec4f(0.0));
+        return;
+    }
+    let t = trace_pixel(pixel, textureLoad(gbuffer_flags, pixel, 0).r, cone_turn(texel));
+    store_indirect(texel, t.e_rv, t.e_r, t.env_rv, t.env_r, t.env);
+    textureStore(out_glossy_rv, texel, vec4f(t.glossy_rv, 1.0));
+    textureStore(out_glossy_r, texel, vec4f(t.glossy_r, 1.0));
+}
+
+// The pixels the resolve listed (resolve.wgsl list_for_retrace), each traced on its own and
+// its light stored with its material, over the blend the resolve wrote (group 2 is then the
+// method's IndirectLight, at the internal size, and the list).
+struct RetraceList {
+    groups: u32,
+    groups_y: u32,
+    groups_z: u32,
+    count: u32,
+    pixels: array<u32>,
+}
+
+@group(2) @binding(7) var<storage, read> retrace_list: RetraceList;
+
+@compute @workgroup_size(64)
+fn cs_retrace(@builtin(global_invocation_id) id: vec3u) {
+    if (id.x >= min(retrace_list.count, arrayLength(&retrace_list.pixels))) { return; }
+    let packed = retrace_list.pixels[id.x];
+    let pixel = vec2i(i32(packed & 0xffffu), i32(packed >> 16u));
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    // Turned as a trace texel of its own (as with `dvct.trace_block` = 1): nothing blends it.
+    store_pixel_light(pixel, flags, trace_pixel(pixel, flags, cone_turn(pixel)));
 }

@@ -98,6 +98,8 @@ pub struct DvctMethod {
     trace: Dispatch,
     /// Their light per pixel, over the internal size.
     resolve: Dispatch,
+    /// The cones of the pixels no trace texel around them is like (`dvct.retrace_likeness`).
+    retrace: pixels::Retrace,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     /// The probe's lights and their maps around the inner volume (`dvct.probe_lights`).
@@ -419,10 +421,11 @@ impl DvctMethod {
         let first_mips = chain(cascades.iter().map(|c| (&c.first, &c.normals)).collect());
         let second_mips = chain(cascades.iter().filter_map(|c| Some((c.second.as_ref()?, &c.normals))).collect());
 
-        // The pixels' cones, once per trace texel, then resolved per pixel.
+        // The pixels' cones, once per trace texel, then resolved per pixel, then those of the
+        // pixels that no texel around them is like.
         let inner = &cascades[0];
         let volumes = volume_group(inner.lit(), outermost.lit(), &outermost.params_buffer, "dvct/volume_group");
-        let pixels::PixelPasses { trace, resolve, indirect, probe_maps } =
+        let pixels::PixelPasses { trace, resolve, retrace, indirect, probe_maps } =
             pixels::PixelPasses::new(inputs, inner, &volume_layout, volumes);
         Self {
             cascades,
@@ -439,6 +442,7 @@ impl DvctMethod {
             second_mips,
             trace,
             resolve,
+            retrace,
             indirect,
             probe_maps,
             shadows: session.settings.shadows,
@@ -574,9 +578,11 @@ impl LightTransport for DvctMethod {
                 self.record_mips(pass, &self.second_mips);
             });
         }
+        self.retrace.reset(&mut rec.encoder);
         rec.compute(Self::LABEL, |pass| {
             self.trace.record(pass);
             self.resolve.record(pass);
+            self.retrace.record(pass);
         });
     }
 

@@ -1,6 +1,8 @@
 //! The pixels' cones of `dvct` (gather.wgsl), once per trace texel (`dvct.trace_block`),
-//! and their resolve per pixel (resolve.wgsl) into the [`IndirectLight`] that direct
-//! lighting adds; the probe's lights and their maps, whose visibility the cones blend in.
+//! their resolve per pixel (resolve.wgsl) into the [`IndirectLight`] that direct lighting
+//! adds, and the cones of the pixels that no trace texel around them is like, traced on their
+//! own (`dvct.retrace_likeness`); the probe's lights and their maps, whose visibility the
+//! cones blend in.
 
 use super::cascade::Cascade;
 use super::{GATHER_SHADER, RESOLVE_SHADER};
@@ -10,6 +12,7 @@ use crate::scene_gpu::GpuProbe;
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_with};
 use mrshade_gpu::timing::Dispatch;
+use wgpu::util::DeviceExt;
 
 /// The per-pixel passes and what they write.
 pub(super) struct PixelPasses {
@@ -17,6 +20,8 @@ pub(super) struct PixelPasses {
     pub trace: Dispatch,
     /// Their light per pixel, over the internal size.
     pub resolve: Dispatch,
+    /// The cones of the pixels the resolve listed.
+    pub retrace: Retrace,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     /// The probe's lights and their maps around the inner volume (`dvct.probe_lights`).
@@ -100,19 +105,54 @@ impl PixelPasses {
         let traced_sampled_layout = bind::layout(device, "dvct/traced_sampled_layout", &entries);
         let traced_sampled = bind::group(device, "dvct/traced_sampled_group", &traced_sampled_layout, &traced_views);
         let indirect = IndirectLight::new(device, "dvct/indirect", internal_size);
-        let indirect_layout = bind::layout(device, "dvct/indirect_layout", &IndirectLight::storage_entries());
+        let retrace_list = RetraceList::new(device, trace_size, scale, settings.retrace_likeness);
+        let mut entries = IndirectLight::storage_entries().to_vec();
+        entries.extend([bind::storage_rw(5, cs), bind::uniform(6, cs)]);
+        let indirect_layout = bind::layout(device, "dvct/indirect_layout", &entries);
         let resolve = compute_pipeline(
             device,
             "dvct/resolve",
             RESOLVE_SHADER,
             &[&gbuffer_layout, &traced_sampled_layout, &indirect_layout, &probe_layout],
         );
+        let mut resources = indirect.resources().to_vec();
+        resources.extend([retrace_list.list.as_entire_binding(), retrace_list.params.as_entire_binding()]);
         let resolve_groups = vec![
-            gbuffer_group,
+            gbuffer_group.clone(),
             traced_sampled,
-            bind::group(device, "dvct/indirect_group", &indirect_layout, &indirect.resources()),
+            bind::group(device, "dvct/indirect_group", &indirect_layout, &resources),
             probe_group,
         ];
+        // The listed pixels' cones write the method's targets (gather.wgsl cs_retrace).
+        let mut entries = IndirectLight::storage_entries().to_vec();
+        entries.push(bind::storage(7, cs));
+        let retrace_layout = bind::layout(device, "dvct/retrace_layout", &entries);
+        // Binding 7: 5 and 6 are the trace's glossy targets in the same module.
+        let mut entries: Vec<wgpu::BindGroupEntry> = indirect
+            .resources()
+            .into_iter()
+            .enumerate()
+            .map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource })
+            .collect();
+        entries.push(wgpu::BindGroupEntry { binding: 7, resource: retrace_list.list.as_entire_binding() });
+        let retrace_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("dvct/retrace_group"),
+            layout: &retrace_layout,
+            entries: &entries,
+        });
+        let retrace_pipeline = compute_pipeline_with(
+            device,
+            "dvct/retrace",
+            GATHER_SHADER,
+            "cs_retrace",
+            &[&gbuffer_layout, volume_layout, &retrace_layout, &trace_probe_layout],
+            &[("VIRTUAL_RAYS", settings.virtual_rays as f64)],
+        );
+        let retrace = Retrace {
+            pipeline: retrace_pipeline,
+            groups: vec![gbuffer_group, trace_groups[1].clone(), retrace_group, trace_groups[3].clone()],
+            list: retrace_list,
+        };
         Self {
             trace: Dispatch {
                 pipeline: trace,
@@ -124,8 +164,83 @@ impl PixelPasses {
                 groups: resolve_groups,
                 workgroups: [internal_size.0.div_ceil(8), internal_size.1.div_ceil(8), 1],
             },
+            retrace,
             indirect,
             probe_maps,
         }
+    }
+}
+
+/// The pixels that no trace texel around them is like (a silhouette, a crease, an object's
+/// rim where it meets the desk), listed by the resolve and traced on their own: blended from
+/// texels of another facing, a bunny's underside took the light of its front (desk-bunny's
+/// region FLIP 0.0618, 0.0568 traced per pixel).
+pub(super) struct Retrace {
+    pipeline: wgpu::ComputePipeline,
+    groups: Vec<wgpu::BindGroup>,
+    list: RetraceList,
+}
+
+impl Retrace {
+    /// Empties the list for the frame (before the pass of [`Self::record`]).
+    pub fn reset(&self, encoder: &mut wgpu::CommandEncoder) {
+        if self.list.enabled {
+            encoder.copy_buffer_to_buffer(&self.list.init, 0, &self.list.list, 0, RETRACE_HEADER_BYTES);
+        }
+    }
+
+    /// Traces the listed pixels (after the resolve, in the same pass).
+    pub fn record(&self, pass: &mut wgpu::ComputePass) {
+        if !self.list.enabled {
+            return;
+        }
+        pass.set_pipeline(&self.pipeline);
+        for (i, g) in self.groups.iter().enumerate() {
+            pass.set_bind_group(i as u32, g, &[]);
+        }
+        pass.dispatch_workgroups_indirect(&self.list.list, 0);
+    }
+}
+
+/// The list of pixels to trace again and what the resolve reads to fill it.
+struct RetraceList {
+    /// The indirect dispatch's workgroups, the count, then the pixels (resolve.wgsl
+    /// RetraceListOut).
+    list: wgpu::Buffer,
+    /// The list's header as each frame starts: no workgroups, none listed.
+    init: wgpu::Buffer,
+    /// (capacity, likeness below which a pixel is listed, 0, 0).
+    params: wgpu::Buffer,
+    /// Whether any pixel can be listed (a trace texel per pixel lists none, nor likeness 0).
+    enabled: bool,
+}
+
+/// Bytes of the list's header: the dispatch's three words and the count.
+const RETRACE_HEADER_BYTES: u64 = 16;
+
+impl RetraceList {
+    /// The list for a frame of `trace_size` texels of `scale` × `scale` pixels: as many entries
+    /// as trace texels (pixels listed beyond them keep the resolve's blend).
+    fn new(device: &wgpu::Device, trace_size: (u32, u32), scale: u32, likeness: f32) -> Self {
+        let enabled = scale > 1 && likeness > 0.0;
+        let capacity = if enabled { trace_size.0 * trace_size.1 } else { 0 };
+        let list = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dvct/retrace_list"),
+            size: RETRACE_HEADER_BYTES + 4 * capacity.max(1) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let init = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dvct/retrace_init"),
+            contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
+            usage: wgpu::BufferUsages::COPY_SRC,
+        });
+        let listed_below = if enabled { likeness } else { 0.0 };
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dvct/retrace_params"),
+            contents: bytemuck::cast_slice(&[capacity as f32, listed_below, 0.0, 0.0]),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        Self { list, init, params, enabled }
     }
 }

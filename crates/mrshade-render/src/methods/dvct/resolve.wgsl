@@ -1,9 +1,11 @@
 // The cones' light of each pixel from the trace texels around it (gather.wgsl, texel.wgsl):
 // their irradiance, glossy radiance and probe visibility, weighted by how far the texel's
 // pixel lies and how alike its depth and normal are (geometry_weight: nothing leaks across an
-// edge), then the pixel's own material, so that a texture keeps every texel of its detail:
-// L = ρ_d/π·E + F_spec·L_glossy (the glossy term not on mirror-like and transmissive
-// materials, which the specular stage draws), L_r only on real pixels.
+// edge), then the pixel's own material (pixel_light.wgsl), so that a texture keeps every
+// texel of its detail. A pixel that no texel around it is like (its likest one's
+// geometry_weight below `dvct.retrace_likeness`: a silhouette, a crease, the rim of an object
+// where it meets the desk) is listed for a trace of its own (gather.wgsl cs_retrace), which
+// overwrites the blend written here.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: VolumeParams;
@@ -29,14 +31,28 @@
 @group(3) @binding(2) var env_dfg_table: texture_2d<f32>;
 @group(3) @binding(3) var env_sampler: sampler;
 
-struct Traced {
-    e_rv: vec3f,
-    e_r: vec3f,
-    env_rv: vec3f,
-    env_r: vec3f,
-    env: vec3f,
-    glossy_rv: vec3f,
-    glossy_r: vec3f,
+// The pixels to trace again (gather.wgsl RetraceList): the indirect dispatch's workgroups
+// (64 pixels each) and how many were listed, then their pixels (x | y << 16). `retrace.x`: the
+// list's capacity (0: none listed); `retrace.y`: the likeness below which a pixel is listed.
+struct RetraceListOut {
+    groups: atomic<u32>,
+    groups_y: u32,
+    groups_z: u32,
+    count: atomic<u32>,
+    pixels: array<u32>,
+}
+
+@group(2) @binding(5) var<storage, read_write> retrace_list: RetraceListOut;
+@group(2) @binding(6) var<uniform> retrace: vec4f;
+
+// Lists `pixel` for a trace of its own, if the list has room.
+fn list_for_retrace(pixel: vec2i) {
+    let i = atomicAdd(&retrace_list.count, 1u);
+    if (i >= u32(retrace.x)) { return; }
+    retrace_list.pixels[i] = u32(pixel.x) | (u32(pixel.y) << 16u);
+    atomicMax(&retrace_list.groups, i / 64u + 1u);
+    retrace_list.groups_y = 1u;
+    retrace_list.groups_z = 1u;
 }
 
 fn add_texel(sum: ptr<function, Traced>, t: vec2i, w: f32) {
@@ -67,6 +83,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
     let radius = 1.5 * f32(scale);
     var sum = Traced(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
     var total = 0.0;
+    var likest = 0.0;
     for (var dy = -reach; dy <= reach; dy++) {
         for (var dx = -reach; dx <= reach; dx++) {
             let t = centre + vec2i(dx, dy);
@@ -76,25 +93,21 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             let spatial = max(0.0, 1.0 - length(vec2f(q - pixel)) / radius);
             let depth_q = textureLoad(gbuffer_depth_motion, q, 0).x;
             let n_q = textureLoad(gbuffer_normal_roughness, q, 0).xyz;
-            let w = select(spatial * geometry_weight(depth, n, depth_q, n_q), 1.0, all(q == pixel));
+            let alike = select(geometry_weight(depth, n, depth_q, n_q), 1.0, all(q == pixel));
+            likest = max(likest, alike);
+            let w = select(spatial * alike, 1.0, all(q == pixel));
             if (w <= 0.0) { continue; }
             add_texel(&sum, t, w);
             total += w;
         }
     }
+    if (likest < retrace.y) { list_for_retrace(pixel); }
     if (total <= 0.0) {
         // No texel like it around (a sliver of surface between edges): its own block's.
         add_texel(&sum, centre, 1.0);
         total = 1.0;
     }
     let inv = 1.0 / total;
-    var s = pixel_surface(pixel);
-    let m = materials[material_of(flags)];
-    s.transmission = m.transmission.x;
-    let specular_albedo = env_specular_albedo(s);
-    let diffuse = env_diffuse_weight(s, specular_albedo) * s.base_color / PI;
-    let glossy = select(specular_albedo, vec3f(0.0), is_traced(m));
-    let l_rv = diffuse * sum.e_rv * inv + glossy * sum.glossy_rv * inv;
-    let l_r = diffuse * sum.e_r * inv + glossy * sum.glossy_r * inv;
-    store_indirect(pixel, l_rv, l_r * r_of(flags), sum.env_rv * inv, sum.env_r * inv, sum.env * inv);
+    let t = Traced(sum.e_rv * inv, sum.e_r * inv, sum.env_rv * inv, sum.env_r * inv, sum.env * inv, sum.glossy_rv * inv, sum.glossy_r * inv);
+    store_pixel_light(pixel, flags, t);
 }

@@ -65,7 +65,8 @@ pub const PHOTO_SHADER: &str = wgsl!(
 /// The mipmap module.
 pub const MIPS_SHADER: &str = wgsl!("mips.wgsl");
 
-/// The pixels' cones module (once per trace texel).
+/// The pixels' cones module (entry points `cs_main`, once per trace texel, and `cs_retrace`,
+/// once per pixel the resolve listed).
 pub const GATHER_SHADER: &str = wgsl!(
     "../../../shaders/lib/frame.wgsl",
     "../../../shaders/lib/gbuffer.wgsl",
@@ -82,6 +83,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "volume.wgsl",
     "texel.wgsl",
     "cones.wgsl",
+    "pixel_light.wgsl",
     "gather.wgsl",
 );
 
@@ -97,5 +99,6 @@ pub const RESOLVE_SHADER: &str = wgsl!(
     "../../../shaders/lib/geometry_weight.wgsl",
     "volume.wgsl",
     "texel.wgsl",
+    "pixel_light.wgsl",
     "resolve.wgsl",
 );
