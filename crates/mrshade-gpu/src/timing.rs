@@ -38,12 +38,21 @@ pub struct Dispatch {
 impl Dispatch {
     /// Sets the pipeline and groups and dispatches.
     pub fn record(&self, pass: &mut wgpu::ComputePass) {
-        pass.set_pipeline(&self.pipeline);
-        for (i, g) in self.groups.iter().enumerate() {
-            pass.set_bind_group(i as u32, g, &[]);
-        }
+        set_pipeline_and_groups(pass, &self.pipeline, &self.groups);
         let [x, y, z] = self.workgroups;
         pass.dispatch_workgroups(x, y, z);
+    }
+}
+
+/// Sets `pipeline` and its bind groups 0, 1, … in order (before a dispatch).
+pub fn set_pipeline_and_groups<'g>(
+    pass: &mut wgpu::ComputePass,
+    pipeline: &wgpu::ComputePipeline,
+    groups: impl IntoIterator<Item = &'g wgpu::BindGroup>,
+) {
+    pass.set_pipeline(pipeline);
+    for (i, g) in groups.into_iter().enumerate() {
+        pass.set_bind_group(i as u32, g, &[]);
     }
 }
 

@@ -37,7 +37,7 @@ use mrshade_core::flags::Realness;
 use mrshade_core::settings::{
     Concentration, InternalReflections, Intersection, Refraction, RefractionPolicy, RenderSettings, SpecularSettings,
 };
-use mrshade_gpu::timing::{Dispatch, Recorder, SideJob};
+use mrshade_gpu::timing::{Dispatch, Recorder, SideJob, set_pipeline_and_groups};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use mrshade_scene::Scene;
 use wgpu::util::DeviceExt;
@@ -522,11 +522,9 @@ impl SpecularStage {
         rec.flush_side_jobs();
         let (w, h) = (self.size.0.div_ceil(8), self.size.1.div_ceil(8));
         rec.compute(Self::RESOLVE_LABEL, |pass| {
-            pass.set_pipeline(&self.resolve);
             let [inputs, probe, output] = &self.resolve_groups;
-            for (i, g) in [inputs, &self.resolve_scene_groups[vpl_parity], probe, output].into_iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
+            let groups = [inputs, &self.resolve_scene_groups[vpl_parity], probe, output];
+            set_pipeline_and_groups(pass, &self.resolve, groups);
             pass.dispatch_workgroups(w, h, 1);
         });
         // The photon grid is emptied for the next frame once the resolve has read it.

@@ -45,7 +45,7 @@ use anyhow::{Result, bail};
 use mrshade_core::settings::{RenderSettings, ShadowSettings};
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_entry, dispatch_linear};
-use mrshade_gpu::timing::{Dispatch, Recorder};
+use mrshade_gpu::timing::{Dispatch, Recorder, set_pipeline_and_groups};
 use wgpu::util::DeviceExt;
 
 /// The start of both groups over the triangles: the volume's uniform and the geometry.
@@ -496,10 +496,7 @@ impl DvctMethod {
     fn record_voxel_passes(&self, pass: &mut wgpu::ComputePass<'_>, passes: &[VoxelPass]) {
         for ((pipeline, bind_groups), cascade) in passes.iter().zip(&self.cascades) {
             let groups = cascade.resolution().div_ceil(4);
-            pass.set_pipeline(pipeline);
-            for (i, g) in bind_groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
+            set_pipeline_and_groups(pass, pipeline, bind_groups);
             pass.dispatch_workgroups(groups, groups, groups);
         }
     }

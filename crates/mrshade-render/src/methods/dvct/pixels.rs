@@ -11,7 +11,7 @@ use crate::methods::{IndirectLight, MethodInputs, indirect_light};
 use crate::scene_gpu::GpuProbe;
 use mrshade_gpu::bind;
 use mrshade_gpu::shader::{compute_pipeline, compute_pipeline_with};
-use mrshade_gpu::timing::Dispatch;
+use mrshade_gpu::timing::{Dispatch, set_pipeline_and_groups};
 use wgpu::util::DeviceExt;
 
 /// The per-pixel passes and what they write.
@@ -91,14 +91,18 @@ impl PixelPasses {
         let mut resources = scene.probe.resources().to_vec();
         resources.extend(probe_maps.resources());
         let trace_probe_group = bind::group(device, "dvct/trace_probe_group", &trace_probe_layout, &resources);
-        let trace = compute_pipeline_with(
-            device,
-            "dvct/cones",
-            GATHER_SHADER,
-            "cs_main",
-            &[&gbuffer_layout, volume_layout, &traced_layout, &trace_probe_layout],
-            &[("VIRTUAL_RAYS", settings.virtual_rays as f64)],
-        );
+        // The cones' two entry points (gather.wgsl), each writing through its own group 2.
+        let cones_pipeline = |label: &str, entry: &str, out_layout: &wgpu::BindGroupLayout| {
+            compute_pipeline_with(
+                device,
+                label,
+                GATHER_SHADER,
+                entry,
+                &[&gbuffer_layout, volume_layout, out_layout, &trace_probe_layout],
+                &[("VIRTUAL_RAYS", settings.virtual_rays as f64)],
+            )
+        };
+        let trace = cones_pipeline("dvct/cones", "cs_main", &traced_layout);
         let trace_groups = vec![gbuffer_group.clone(), volumes, traced_group, trace_probe_group];
         let mut entries = IndirectLight::sampled_entries(0).to_vec();
         entries.extend(IndirectLight::sampled_entries(5).into_iter().take(2));
@@ -140,16 +144,8 @@ impl PixelPasses {
             layout: &retrace_layout,
             entries: &entries,
         });
-        let retrace_pipeline = compute_pipeline_with(
-            device,
-            "dvct/retrace",
-            GATHER_SHADER,
-            "cs_retrace",
-            &[&gbuffer_layout, volume_layout, &retrace_layout, &trace_probe_layout],
-            &[("VIRTUAL_RAYS", settings.virtual_rays as f64)],
-        );
         let retrace = Retrace {
-            pipeline: retrace_pipeline,
+            pipeline: cones_pipeline("dvct/retrace", "cs_retrace", &retrace_layout),
             groups: vec![gbuffer_group, trace_groups[1].clone(), retrace_group, trace_groups[3].clone()],
             list: retrace_list,
         };
@@ -194,10 +190,7 @@ impl Retrace {
         if !self.list.enabled {
             return;
         }
-        pass.set_pipeline(&self.pipeline);
-        for (i, g) in self.groups.iter().enumerate() {
-            pass.set_bind_group(i as u32, g, &[]);
-        }
+        set_pipeline_and_groups(pass, &self.pipeline, &self.groups);
         pass.dispatch_workgroups_indirect(&self.list.list, 0);
     }
 }

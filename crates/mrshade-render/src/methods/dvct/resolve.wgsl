@@ -32,7 +32,8 @@
 @group(3) @binding(3) var env_sampler: sampler;
 
 // The pixels to trace again (gather.wgsl RetraceList): the indirect dispatch's workgroups
-// (64 pixels each) and how many were listed, then their pixels (x | y << 16). `retrace.x`: the
+// (64 pixels each; y and z are 1 from the header each frame starts with, pixels.rs
+// RetraceList) and how many were listed, then their pixels (x | y << 16). `retrace.x`: the
 // list's capacity (0: none listed); `retrace.y`: the likeness below which a pixel is listed.
 struct RetraceListOut {
     groups: atomic<u32>,
@@ -51,8 +52,6 @@ fn list_for_retrace(pixel: vec2i) {
     if (i >= u32(retrace.x)) { return; }
     retrace_list.pixels[i] = u32(pixel.x) | (u32(pixel.y) << 16u);
     atomicMax(&retrace_list.groups, i / 64u + 1u);
-    retrace_list.groups_y = 1u;
-    retrace_list.groups_z = 1u;
 }
 
 fn add_texel(sum: ptr<function, Traced>, t: vec2i, w: f32) {
@@ -93,9 +92,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
             let spatial = max(0.0, 1.0 - length(vec2f(q - pixel)) / radius);
             let depth_q = textureLoad(gbuffer_depth_motion, q, 0).x;
             let n_q = textureLoad(gbuffer_normal_roughness, q, 0).xyz;
-            let alike = select(geometry_weight(depth, n, depth_q, n_q), 1.0, all(q == pixel));
+            let own = all(q == pixel);
+            let alike = select(geometry_weight(depth, n, depth_q, n_q), 1.0, own);
             likest = max(likest, alike);
-            let w = select(spatial * alike, 1.0, all(q == pixel));
+            let w = select(spatial * alike, 1.0, own);
             if (w <= 0.0) { continue; }
             add_texel(&sum, t, w);
             total += w;

@@ -13,7 +13,7 @@ use glam::{UVec4, Vec4};
 use mrshade_core::Differential;
 use mrshade_core::settings::{IblSettings, PrtSpecular, ShadowSettings, VirtualShading};
 use mrshade_core::sog::SogTable;
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Recorder, set_pipeline_and_groups};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -231,10 +231,7 @@ impl DirectPass {
     /// Shades every pixel.
     pub fn record(&self, rec: &mut Recorder) {
         rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.pipeline);
-            for (i, g) in self.groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
+            set_pipeline_and_groups(pass, &self.pipeline, &self.groups);
             pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
         });
     }

@@ -5,7 +5,7 @@
 use crate::raster::{Casters, RasterViews, Rasterizer};
 use crate::scene_gpu::{Geometry, GpuMaterials};
 use crate::uniforms::FrameUniforms;
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Recorder, set_pipeline_and_groups};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 
 /// The G-buffer targets, at the internal (shading) resolution.
@@ -150,10 +150,7 @@ impl GBufferPass {
     pub fn record(&self, rec: &mut Recorder, rasterizer: &Rasterizer) {
         rasterizer.record(rec, Self::RASTER_LABEL, [&self.camera]);
         rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.pipeline);
-            for (i, g) in self.groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
+            set_pipeline_and_groups(pass, &self.pipeline, &self.groups);
             pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
         });
     }

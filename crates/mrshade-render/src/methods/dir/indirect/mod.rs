@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec4};
 use mrshade_core::Differential;
 use mrshade_core::settings::DirSettings;
-use mrshade_gpu::timing::Recorder;
+use mrshade_gpu::timing::{Recorder, set_pipeline_and_groups};
 use mrshade_gpu::{GpuContext, Target, bind, wgsl};
 use wgpu::util::DeviceExt;
 
@@ -129,10 +129,7 @@ impl IndirectPass {
     /// Shades every pixel with its VPL subset of buffer `parity`.
     pub fn record(&self, rec: &mut Recorder, parity: usize) {
         rec.compute(Self::LABEL, |pass| {
-            pass.set_pipeline(&self.pipeline);
-            for (i, g) in self.groups[parity].iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
+            set_pipeline_and_groups(pass, &self.pipeline, &self.groups[parity]);
             pass.dispatch_workgroups(self.size.0.div_ceil(8), self.size.1.div_ceil(8), 1);
         });
     }
