@@ -7,6 +7,7 @@ mod common;
 use common::dvct::{dvct, dvct_method, probe_visibility};
 use common::{Rendered, Setup};
 use glam::Vec3;
+use mrshade_render::FrameInputs;
 
 #[test]
 fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
@@ -456,13 +457,26 @@ fn pixels_that_no_block_is_like_trace_their_own_cones() {
     // the floor the texels around a pixel face elsewhere or lie at another depth, and the
     // resolve's blend gave the pixel their light. Listed for a trace of its own
     // (`dvct.retrace_likeness`), such a pixel has exactly the light a trace per pixel gives it
-    // (the same cones, turned as its own texel), and the worst pixels come close to it.
-    let render = |block: u32, likeness: f32| {
+    // (the same cones, turned as its own texel), and the worst pixels come close to it. Only
+    // while the view holds still: a frame after the photo changed keeps the blend.
+    let setup = |block: u32, likeness: f32| {
         let mut s = ball_over_floor(0.05, 32, [-0.3, 0.4, 0.0]);
         s.extra_toml += &format!("trace_block = {block}\nretrace_likeness = {likeness}\n");
-        let r = s.render();
-        dvct_method(&r).indirect.read_light(&r.ctx).unwrap().rv
+        s.render()
     };
+    let light = |r: &Rendered| dvct_method(r).indirect.read_light(&r.ctx).unwrap().rv;
+    let after_new_photo = |likeness: f32| {
+        let mut r = setup(4, likeness);
+        let (w, h) = (r.session.output.width, r.session.output.height);
+        let grey: Vec<u8> = vec![100; (w * h * 3) as usize];
+        let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&grey, (w, h));
+        let inputs = FrameInputs { photo: Some(&packed), ..FrameInputs::camera(r.renderer.session_camera()) };
+        let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
+        r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
+        light(&r)
+    };
+    assert!(after_new_photo(0.8).pixels == after_new_photo(0.0).pixels, "a moving view's frame retraced");
+    let render = |block: u32, likeness: f32| light(&setup(block, likeness));
     let full = render(1, 0.8);
     let scale = full.pixels.iter().map(|p| p[0]).fold(0.0, f32::max);
     let errors = |likeness: f32| {

@@ -575,7 +575,7 @@ impl LightTransport for DvctMethod {
                 self.record_mips(pass, &self.second_mips);
             });
         }
-        self.retrace.reset(&mut rec.encoder);
+        self.retrace.begin(&mut rec.encoder, self.still_frames > 0);
         rec.compute(Self::LABEL, |pass| {
             self.trace.record(pass);
             self.resolve.record(pass);

@@ -148,6 +148,7 @@ impl PixelPasses {
             pipeline: cones_pipeline("dvct/retrace", "cs_retrace", &retrace_layout),
             groups: vec![gbuffer_group, trace_groups[1].clone(), retrace_group, trace_groups[3].clone()],
             list: retrace_list,
+            active: false,
         };
         Self {
             trace: Dispatch {
@@ -168,26 +169,38 @@ impl PixelPasses {
 }
 
 /// The pixels that no trace texel around them is like (a silhouette, a crease, an object's
-/// rim where it meets the desk), listed by the resolve and traced on their own: blended from
-/// texels of another facing, a bunny's underside took the light of its front (desk-bunny's
-/// region FLIP 0.0618, 0.0568 traced per pixel).
+/// rim where it meets the desk), listed by the resolve and traced on their own while the view
+/// holds still: blended from texels of another facing, a bunny's underside took the light of
+/// its front (desk-bunny's region FLIP 0.0618, 0.0568 traced per pixel). A moving view's
+/// frames list nothing and keep the blend: at 1080p the pixels listed (mostly surfaces seen at
+/// grazing angles, whose texels' depths run apart) cost a moving cornell frame 0.25 ms, past
+/// the method's 3 ms (docs/benchmarks.md, 2026-12-07).
 pub(super) struct Retrace {
     pipeline: wgpu::ComputePipeline,
     groups: Vec<wgpu::BindGroup>,
     list: RetraceList,
+    /// Whether this frame's resolve lists and its pixels are traced (a still view's frame).
+    active: bool,
 }
 
 impl Retrace {
-    /// Empties the list for the frame (before the pass of [`Self::record`]).
-    pub fn reset(&self, encoder: &mut wgpu::CommandEncoder) {
-        if self.list.enabled {
+    /// Readies the frame (before the pass of [`Self::record`]): a still view's frame empties
+    /// the list and has the resolve fill it; a moving view's has it list nothing.
+    pub fn begin(&mut self, encoder: &mut wgpu::CommandEncoder, still: bool) {
+        let active = self.list.enabled && still;
+        if active != self.active {
+            let params = if active { &self.list.listing } else { &self.list.not_listing };
+            encoder.copy_buffer_to_buffer(params, 0, &self.list.params, 0, RETRACE_PARAMS_BYTES);
+            self.active = active;
+        }
+        if active {
             encoder.copy_buffer_to_buffer(&self.list.init, 0, &self.list.list, 0, RETRACE_HEADER_BYTES);
         }
     }
 
     /// Traces the listed pixels (after the resolve, in the same pass).
     pub fn record(&self, pass: &mut wgpu::ComputePass) {
-        if !self.list.enabled {
+        if !self.active {
             return;
         }
         set_pipeline_and_groups(pass, &self.pipeline, &self.groups);
@@ -202,14 +215,20 @@ struct RetraceList {
     list: wgpu::Buffer,
     /// The list's header as each frame starts: no workgroups, none listed.
     init: wgpu::Buffer,
-    /// (capacity, likeness below which a pixel is listed, 0, 0).
+    /// (capacity, likeness below which a pixel is listed, 0, 0): as the resolve reads it, a
+    /// copy of `listing` or `not_listing` (likeness 0).
     params: wgpu::Buffer,
+    listing: wgpu::Buffer,
+    not_listing: wgpu::Buffer,
     /// Whether any pixel can be listed (a trace texel per pixel lists none, nor likeness 0).
     enabled: bool,
 }
 
 /// Bytes of the list's header: the dispatch's three words and the count.
 const RETRACE_HEADER_BYTES: u64 = 16;
+
+/// Bytes of the resolve's parameters of the list.
+const RETRACE_PARAMS_BYTES: u64 = 16;
 
 impl RetraceList {
     /// The list for a frame of `trace_size` texels of `scale` × `scale` pixels: as many entries
@@ -228,12 +247,16 @@ impl RetraceList {
             contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
             usage: wgpu::BufferUsages::COPY_SRC,
         });
-        let listed_below = if enabled { likeness } else { 0.0 };
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("dvct/retrace_params"),
-            contents: bytemuck::cast_slice(&[capacity as f32, listed_below, 0.0, 0.0]),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        Self { list, init, params, enabled }
+        let uniform = |label: &str, likeness: f32, usage: wgpu::BufferUsages| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(&[capacity as f32, likeness, 0.0, 0.0]),
+                usage,
+            })
+        };
+        let listing = uniform("dvct/retrace_listing", likeness, wgpu::BufferUsages::COPY_SRC);
+        let not_listing = uniform("dvct/retrace_not_listing", 0.0, wgpu::BufferUsages::COPY_SRC);
+        let params = uniform("dvct/retrace_params", 0.0, wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST);
+        Self { list, init, params, listing, not_listing, enabled }
     }
 }
