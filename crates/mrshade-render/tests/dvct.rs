@@ -260,15 +260,7 @@ fn real_voxels_the_camera_sees_take_the_photos_light_and_hidden_ones_their_own()
         s.extra_toml += &format!("photo_voxels = {photo_voxels}\n");
         let mut r = s.render();
         if let Some(rgb) = next_photo {
-            let (w, h) = (r.session.output.width, r.session.output.height);
-            let texels: Vec<u8> = (0..w * h).flat_map(|_| rgb).collect();
-            let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&texels, (w, h));
-            let inputs = mrshade_render::FrameInputs {
-                photo: Some(&packed),
-                ..mrshade_render::FrameInputs::camera(r.renderer.session_camera())
-            };
-            let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
-            r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
+            r.render_with_photo(&|_, _| rgb);
         }
         let method = dvct_method(&r);
         let params = method.params();

@@ -7,7 +7,6 @@ mod common;
 use common::dvct::{dvct, dvct_method, probe_visibility};
 use common::{Rendered, Setup};
 use glam::Vec3;
-use mrshade_render::FrameInputs;
 
 #[test]
 fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
@@ -467,12 +466,7 @@ fn pixels_that_no_block_is_like_trace_their_own_cones() {
     let light = |r: &Rendered| dvct_method(r).indirect.read_light(&r.ctx).unwrap().rv;
     let after_new_photo = |likeness: f32| {
         let mut r = setup(4, likeness);
-        let (w, h) = (r.session.output.width, r.session.output.height);
-        let grey: Vec<u8> = vec![100; (w * h * 3) as usize];
-        let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&grey, (w, h));
-        let inputs = FrameInputs { photo: Some(&packed), ..FrameInputs::camera(r.renderer.session_camera()) };
-        let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
-        r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
+        r.render_with_photo(&|_, _| [100; 3]);
         light(&r)
     };
     assert!(after_new_photo(0.8).pixels == after_new_photo(0.0).pixels, "a moving view's frame retraced");

@@ -285,13 +285,7 @@ fn tilted_metal(roughness: f32, temporal_weight: f32) -> common::Rendered {
 
 /// One frame with `photo` uploaded (a live stream's frame: everything counts as changed).
 fn stream_frame(r: &mut common::Rendered, photo: &dyn Fn(u32, u32) -> [u8; 3]) -> Vec<f32> {
-    let (w, h) = (r.session.output.width, r.session.output.height);
-    let rgb: Vec<u8> = (0..h).flat_map(|y| (0..w).flat_map(move |x| photo(x, y))).collect();
-    let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&rgb, (w, h));
-    let camera = r.renderer.session_camera();
-    let mut profiler = mrshade_gpu::timing::profiler(&r.ctx, false).unwrap();
-    let inputs = mrshade_render::FrameInputs { photo: Some(&packed), ..mrshade_render::FrameInputs::camera(camera) };
-    r.renderer.render_untimed(&r.ctx, &mut profiler, &inputs).unwrap();
+    r.render_with_photo(photo);
     r.renderer.read_composite(&r.ctx).unwrap().image.pixels.iter().map(|p| p[0] + p[1] + p[2]).collect()
 }
 

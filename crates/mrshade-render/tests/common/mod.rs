@@ -187,6 +187,19 @@ impl Rendered {
         (y * w + x) as usize
     }
 
+    /// Renders one more frame with `photo` uploaded (a live stream's frame: the photo counts
+    /// as changed, and the view as moving).
+    pub fn render_with_photo(&mut self, photo: &dyn Fn(u32, u32) -> [u8; 3]) {
+        let (w, h) = (self.session.output.width, self.session.output.height);
+        let rgb: Vec<u8> = (0..h).flat_map(|y| (0..w).flat_map(move |x| photo(x, y))).collect();
+        let packed = mrshade_render::passes::upload::PackedPhoto::from_srgb8(&rgb, (w, h));
+        let camera = self.renderer.session_camera();
+        let mut profiler = mrshade_gpu::timing::profiler(&self.ctx, false).unwrap();
+        let inputs =
+            mrshade_render::FrameInputs { photo: Some(&packed), ..mrshade_render::FrameInputs::camera(camera) };
+        self.renderer.render_untimed(&self.ctx, &mut profiler, &inputs).unwrap();
+    }
+
     pub fn l_rv(&self, x: u32, y: u32) -> Vec3 {
         Vec3::from(self.radiance.rv.get(x, y))
     }

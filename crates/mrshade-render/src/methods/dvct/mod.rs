@@ -493,6 +493,12 @@ impl DvctMethod {
     }
 
     /// Records one pass per cascade (`passes` in the cascades' order).
+    /// Whether nothing changed since the last frame: a still view's frames draw the probe's
+    /// lights anew and retrace the pixels no block is like.
+    fn view_still(&self) -> bool {
+        self.still_frames > 0
+    }
+
     fn record_voxel_passes(&self, pass: &mut wgpu::ComputePass<'_>, passes: &[VoxelPass]) {
         for ((pipeline, bind_groups), cascade) in passes.iter().zip(&self.cascades) {
             let groups = cascade.resolution().div_ceil(4);
@@ -523,7 +529,7 @@ impl LightTransport for DvctMethod {
         // A still view draws the probe's lights anew each frame (`dvct.sample_probe_lights`),
         // a moving one keeps the fixed ones.
         if let Some(regions) = &self.probe_regions {
-            let sampling = self.still_frames > 0;
+            let sampling = self.view_still();
             if sampling || self.probe_maps.sampled() {
                 let samples = sampling.then(|| regions.sampled(self.still_frames));
                 self.probe_maps.sample_lights(queue, samples, self.cascades[0].cube(), self.scene_box, &self.shadows);
@@ -575,7 +581,7 @@ impl LightTransport for DvctMethod {
                 self.record_mips(pass, &self.second_mips);
             });
         }
-        self.retrace.begin(&mut rec.encoder, self.still_frames > 0);
+        self.retrace.begin(&mut rec.encoder, self.view_still());
         rec.compute(Self::LABEL, |pass| {
             self.trace.record(pass);
             self.resolve.record(pass);
