@@ -7,6 +7,7 @@ mod common;
 use common::dvct::{dvct, dvct_method, probe_visibility};
 use common::{Rendered, Setup};
 use glam::Vec3;
+use mrshade_core::HdrImage;
 
 #[test]
 fn a_virtual_cube_shadows_the_probe_near_it_and_changes_nothing_far_away() {
@@ -416,7 +417,7 @@ fn a_virtual_balls_rays_gather_the_light_of_the_lit_floor_below_it_as_the_path_t
         let mut s = ball_over_floor(0.08, 32, [0.12, 0.3, 0.0]);
         s.top_toml = format!("method = \"{method}\"\n");
         s.extra_toml += &format!(
-            "photo_voxels = false\ntrace_block = 1\nvirtual_rays = {rays}\n[reference]\nspp = 256\nmax_bounces = {bounces}\n"
+            "photo_voxels = false\ntrace_block = 1\nvirtual_rays = {rays}\nstill_rays = 0\n[reference]\nspp = 256\nmax_bounces = {bounces}\n"
         );
         s
     };
@@ -460,7 +461,8 @@ fn pixels_that_no_block_is_like_trace_their_own_cones() {
     // while the view holds still: a frame after the photo changed keeps the blend.
     let setup = |block: u32, likeness: f32| {
         let mut s = ball_over_floor(0.05, 32, [-0.3, 0.4, 0.0]);
-        s.extra_toml += &format!("trace_block = {block}\nretrace_likeness = {likeness}\n");
+        // The cones on every pixel: a still's rays (`dvct.still_rays`) differ texel by texel.
+        s.extra_toml += &format!("trace_block = {block}\nretrace_likeness = {likeness}\nstill_rays = 0\n");
         s.render()
     };
     let light = |r: &Rendered| dvct_method(r).indirect.read_light(&r.ctx).unwrap().rv;
@@ -493,4 +495,51 @@ fn pixels_that_no_block_is_like_trace_their_own_cones() {
     // The ball's outline is about 90 pixels long.
     assert!(exact(&retraced) > exact(&blended) + 50, "{} → {} exact pixels", exact(&blended), exact(&retraced));
     assert!(worst(&retraced).0 < 0.5 * worst(&blended).0, "{:?} → {:?}", worst(&blended), worst(&retraced));
+}
+
+#[test]
+fn a_still_views_few_rays_per_frame_gather_what_many_rays_in_one_frame_do() {
+    // The ball over the lit floor of the rays' test above, its virtual pixels traced one by
+    // one: while the view holds still each frame gathers 4 rays per texel, shifted anew, and
+    // keeps the running mean (`dvct.still_rays`). Over 16 still frames its light on the
+    // ball's pixels comes to that of 256 rays in one frame, and pixel by pixel nearer it
+    // than the nine cones'. A frame after a new photo (the view changed) traces the cones
+    // again, exactly.
+    let scene = |virtual_rays: u32, still_rays: u32, frames: u32| {
+        let mut s = ball_over_floor(0.08, 32, [0.12, 0.3, 0.0]);
+        s.extra_toml = s.extra_toml.replace("frames = 8", &format!("frames = {frames}"));
+        s.extra_toml += &format!(
+            "photo_voxels = false\ntrace_block = 1\nvirtual_rays = {virtual_rays}\nstill_rays = {still_rays}\n"
+        );
+        s.render()
+    };
+    let light = |r: &Rendered| dvct_method(r).indirect.read_light(&r.ctx).unwrap().rv;
+    let (many, cones) = (light(&scene(256, 0, 1)), light(&scene(0, 0, 1)));
+    let mut still_rendered = scene(0, 4, 17);
+    let still = light(&still_rendered);
+    let on_ball = |i: usize| {
+        let p = still_rendered.world_on_plane((i % 64) as u32, (i / 64) as u32, 0.08);
+        (p.x * p.x + p.z * p.z).sqrt() < 0.95 * 0.05
+    };
+    let ball = |im: &HdrImage| -> Vec<[f32; 3]> {
+        im.pixels.iter().enumerate().filter(|(i, _)| on_ball(*i)).map(|(_, p)| *p).collect()
+    };
+    let total = |im: &HdrImage| ball(im).iter().map(|p| p[0] + p[1] + p[2]).sum::<f32>();
+    let off = |im: &HdrImage| {
+        ball(&many).iter().zip(ball(im)).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).sum::<f32>()).sum::<f32>()
+            / total(&many)
+    };
+    let ratio = total(&still) / total(&many);
+    let (still_off, cones_off) = (off(&still), off(&cones));
+    eprintln!(
+        "the ball's bounce light against 256 rays in one frame: 16 still frames of 4 rays {ratio:.3} of it, \
+         {still_off:.3} off pixel by pixel; the cones {:.3}, {cones_off:.3} off",
+        total(&cones) / total(&many)
+    );
+    assert!((ratio - 1.0).abs() < 0.05, "16 still frames of 4 rays gather {ratio:.3} of 256 rays' light");
+    assert!(still_off < 0.3 * cones_off, "pixel by pixel {still_off:.3} off 256 rays, the cones {cones_off:.3}");
+    still_rendered.render_with_photo(&|_, _| [100; 3]);
+    let mut cones_rendered = scene(0, 0, 1);
+    cones_rendered.render_with_photo(&|_, _| [100; 3]);
+    assert!(light(&still_rendered).pixels == light(&cones_rendered).pixels, "a moving view's frame kept the rays");
 }

@@ -93,6 +93,17 @@ pub struct DvctSettings {
     /// cone does per voxel they cross: 32 took a moving 1080p frame on an H100 1.8–3.0 ms
     /// longer (16: 0.8–1.4 ms), past the method's 3 ms. Default 0: the cones (the thesis).
     pub virtual_rays: u32,
+    /// Thin rays (0–64) each virtual trace texel gathers with per frame while the view holds
+    /// still (as `sample_probe_lights`), shifted anew each frame, keeping the running mean of
+    /// the still's frames: the light of `virtual_rays` at the cost of a few rays per frame (a
+    /// still of 64 frames gathers 252 per texel). Region FLIP on lavapipe at 640×480, 0 → 4:
+    /// cornell 0.1351 → 0.1191, desk-bunny 0.0569 → 0.0529, desk-spot-real 0.0750 → 0.0719,
+    /// desk-spot-virtual 0.0858 → 0.0846 (128 rays every frame: 0.0521 / 0.0716 / 0.0845); a
+    /// still 1080p frame on an H100 0.20–0.30 ms longer (docs/benchmarks.md, 2026-12-07). A
+    /// live still view shows its first frames' few rays as noise on the virtual surfaces,
+    /// which settles within a few frames; moving frames keep the cones (or `virtual_rays`).
+    /// 0 turns it off. Default 4.
+    pub still_rays: u32,
     /// A pixel whose likest trace texel around it (of those the resolve blends:
     /// `geometry_weight` of depth and normal, 1 for the texel traced from the pixel itself)
     /// is less alike than this traces its own cones after the resolve. The texels are traced
@@ -123,6 +134,7 @@ impl Default for DvctSettings {
             sample_probe_lights: true,
             probe_map_resolution: 128,
             virtual_rays: 0,
+            still_rays: 4,
             retrace_likeness: 0.8,
         }
     }
@@ -175,6 +187,11 @@ impl DvctSettings {
             format!("must be at most 256 rays (0: the nine cones), got {}", self.virtual_rays),
         )?;
         check(
+            self.still_rays <= 64,
+            "dvct.still_rays",
+            format!("must be at most 64 rays per frame (0: off), got {}", self.still_rays),
+        )?;
+        check(
             (0.0..=1.0).contains(&self.retrace_likeness),
             "dvct.retrace_likeness",
             format!("must be from 0 (off) to 1, got {}", self.retrace_likeness),
@@ -197,6 +214,8 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("dvct.outer_scale"));
         let bad = DvctSettings { outer_resolution: 48, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.outer_resolution"));
+        let bad = DvctSettings { still_rays: 65, ..Default::default() };
+        assert!(bad.validate().unwrap_err().contains("dvct.still_rays"));
         let bad = DvctSettings { sample_spacing: 0.1, ..Default::default() };
         assert!(bad.validate().unwrap_err().contains("dvct.sample_spacing"));
         let bad = DvctSettings { bounce_spacing: f32::NAN, ..Default::default() };

@@ -48,6 +48,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.trace_block", Kind::Number),
     ("dvct.photo_voxels", Kind::Bool),
     ("dvct.virtual_rays", Kind::Number),
+    ("dvct.still_rays", Kind::Number),
     ("dlpv.resolution", Kind::Number),
     ("dlpv.propagation_steps", Kind::Number),
     ("dlpv.rsm_resolution", Kind::Number),

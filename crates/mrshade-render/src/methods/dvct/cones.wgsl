@@ -407,14 +407,21 @@ override VIRTUAL_RAYS: u32 = 0u;
 // this thin). They cost what a cone does per voxel they cross: 32 took a moving 1080p cornell
 // frame on an H100 from 2.85 to 4.76 ms (docs/benchmarks.md).
 fn gather_rays(p: vec3f, n: vec3f, turn: f32) -> Gathered {
+    return gather_rays_shifted(p, n, turn, VIRTUAL_RAYS, vec2f(0.5, 0.0));
+}
+
+// gather_rays with `rays` rays whose spiral is shifted by `shift`: x the share of a ring the
+// radii step on (0.5: the rings' middles), y the share of a turn the angles start at. A still
+// view's frames shift it each frame (`dvct.still_rays`: still_rays.wgsl).
+fn gather_rays_shifted(p: vec3f, n: vec3f, turn: f32, rays: u32, shift: vec2f) -> Gathered {
     var out = Gathered(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
     let o = p + n * (RAY_START_VOXELS * voxel_side());
-    let tb = cones_frame(n, turn);
+    let tb = cones_frame(n, turn + 2.0 * PI * shift.y);
     let aperture = 1.0 / f32(params.info.x);
-    let weight = PI / f32(max(VIRTUAL_RAYS, 1u));
-    for (var k = 0u; k < VIRTUAL_RAYS; k++) {
+    let weight = PI / f32(max(rays, 1u));
+    for (var k = 0u; k < rays; k++) {
         // Equal areas of the disc that projects onto the cosine-weighted hemisphere.
-        let u = (f32(k) + 0.5) / f32(VIRTUAL_RAYS);
+        let u = (f32(k) + shift.x) / f32(rays);
         let a = f32(k) * GOLDEN_ANGLE;
         let disc = sqrt(u) * vec2f(cos(a), sin(a));
         let d = normalize(tb[0] * disc.x + tb[1] * disc.y + n * sqrt(max(1.0 - u, 0.0)));

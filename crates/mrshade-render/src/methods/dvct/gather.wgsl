@@ -29,8 +29,8 @@
 // Group 1: the volumes (cones.wgsl).
 
 // Group 2: the trace texels' IndirectLight targets (shaders/lib/indirect_out.wgsl: the
-// diffuse cones' irradiance of both solutions and the probe's visibility sums), and the glossy
-// cone's radiance of both solutions.
+// diffuse cones' irradiance of both solutions and the probe's visibility sums), the glossy
+// cone's radiance of both solutions, and a still view's thin rays (still_rays.wgsl, 8 and 9).
 @group(2) @binding(5) var out_glossy_rv: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(6) var out_glossy_r: texture_storage_2d<rgba16float, write>;
 
@@ -54,15 +54,23 @@ fn specular_aperture(roughness: f32) -> f32 {
 // turned by `turn`.
 fn trace_pixel(pixel: vec2i, flags: u32, turn: f32) -> Traced {
     let s = pixel_surface(pixel);
-    let m = materials[material_of(flags)];
-    // Virtual surfaces gather with thin rays where `dvct.virtual_rays` asks for them
-    // (cones.wgsl gather_rays), real ones with the cones: they make up most of the frame.
-    var e: Gathered;
+    return trace_surface(s, flags, gather_surface(s, flags, turn));
+}
+
+// What the diffuse cones of surface `s` (of G-buffer `flags`) gather, turned by `turn`.
+// Virtual surfaces gather with thin rays where `dvct.virtual_rays` asks for them (cones.wgsl
+// gather_rays), real ones with the cones: they make up most of the frame.
+fn gather_surface(s: Surface, flags: u32, turn: f32) -> Gathered {
     if (VIRTUAL_RAYS > 0u && !is_real(flags)) {
-        e = gather_rays(s.position, s.normal, turn);
-    } else {
-        e = gather_diffuse(s.position, s.normal, pixel_spacing(), turn);
+        return gather_rays(s.position, s.normal, turn);
     }
+    return gather_diffuse(s.position, s.normal, pixel_spacing(), turn);
+}
+
+// The light of surface `s` (of G-buffer `flags`) from what its diffuse cones gathered, `e`:
+// its glossy cone, and the probe's visibility of the cones blended with the maps'.
+fn trace_surface(s: Surface, flags: u32, e: Gathered) -> Traced {
+    let m = materials[material_of(flags)];
     // Zero-initialised: no glossy light on traced surfaces.
     var glossy: Cone;
     if (!is_traced(m)) {
@@ -114,7 +122,17 @@ fn cs_main(@builtin(global_invocation_id) id: vec3u) {
         textureStore(out_glossy_r, texel, vec4f(0.0));
         return;
     }
-    let t = trace_pixel(pixel, textureLoad(gbuffer_flags, pixel, 0).r, cone_turn(texel));
+    let flags = textureLoad(gbuffer_flags, pixel, 0).r;
+    let s = pixel_surface(pixel);
+    // A still view's virtual texels: the running mean of each frame's few thin rays
+    // (still_rays.wgsl).
+    var e: Gathered;
+    if (still_rays_active() && !is_real(flags)) {
+        e = still_gather(texel, flags, s, cone_turn(texel));
+    } else {
+        e = gather_surface(s, flags, cone_turn(texel));
+    }
+    let t = trace_surface(s, flags, e);
     store_indirect(texel, t.e_rv, t.e_r, t.env_rv, t.env_r, t.env);
     textureStore(out_glossy_rv, texel, vec4f(t.glossy_rv, 1.0));
     textureStore(out_glossy_r, texel, vec4f(t.glossy_r, 1.0));

@@ -19,7 +19,9 @@
 //! (`probe_maps`, `dvct.probe_lights`) rather than by the nine wide cones alone (gather.wgsl),
 //! and while the view holds still each frame draws those lights anew within their regions,
 //! every one shadowing through its maps, so that a still's mean is the probe's exact
-//! visibility (`dvct.sample_probe_lights`, `ibl::ProbeRegions::sampled`);
+//! visibility (`dvct.sample_probe_lights`, `ibl::ProbeRegions::sampled`), and the virtual
+//! surfaces gather with a few thin rays per frame whose running mean each texel keeps
+//! (`dvct.still_rays`, still_rays.wgsl) rather than with the nine wide cones;
 //! and the virtual content's change along a cone, which covers the same part of the cone
 //! sample after sample, lies between compounding its samples and taking the most opaque one
 //! (cones.wgsl `probe_occlusion`, `cone_seen`).
@@ -100,6 +102,8 @@ pub struct DvctMethod {
     resolve: Dispatch,
     /// The cones of the pixels no trace texel around them is like (`dvct.retrace_likeness`).
     retrace: pixels::Retrace,
+    /// A still view's thin rays for the virtual trace texels (`dvct.still_rays`).
+    still_rays: pixels::StillRays,
     /// What direct lighting adds.
     pub indirect: IndirectLight,
     /// The probe's lights and their maps around the inner volume (`dvct.probe_lights`).
@@ -151,6 +155,14 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
         if d.bounces >= 2 && d.photo_voxels { sides.iter().map(|&r| RawPair::bytes(r as u32)).sum() } else { 0 };
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
+        (
+            "dvct still rays' means per trace texel (dvct.still_rays)",
+            if d.still_rays > 0 {
+                internal_pixels.div_ceil((d.trace_block * d.trace_block) as u64) * pixels::STILL_HISTORY_BYTES
+            } else {
+                0
+            },
+        ),
         ("dvct voxels and their normals (dvct.resolution³, dvct.outer_resolution³)", voxels),
         ("dvct light volumes (voxels × bounces per volume, with mips)", light),
         ("dvct second bounce before the photo's light (dvct.photo_voxels)", raw),
@@ -425,7 +437,7 @@ impl DvctMethod {
         // pixels that no texel around them is like.
         let inner = &cascades[0];
         let volumes = volume_group(inner.lit(), outermost.lit(), &outermost.params_buffer, "dvct/volume_group");
-        let pixels::PixelPasses { trace, resolve, retrace, indirect, probe_maps } =
+        let pixels::PixelPasses { trace, resolve, retrace, indirect, probe_maps, still_rays } =
             pixels::PixelPasses::new(inputs, inner, &volume_layout, volumes);
         Self {
             cascades,
@@ -443,6 +455,7 @@ impl DvctMethod {
             trace,
             resolve,
             retrace,
+            still_rays,
             indirect,
             probe_maps,
             shadows: session.settings.shadows,
@@ -526,6 +539,7 @@ impl LightTransport for DvctMethod {
             || change.camera_moved
             || change.photo_changed;
         self.still_frames = if moved { 0 } else { self.still_frames + 1 };
+        self.still_rays.set_frame(queue, self.still_frames);
         // A still view draws the probe's lights anew each frame (`dvct.sample_probe_lights`),
         // a moving one keeps the fixed ones.
         if let Some(regions) = &self.probe_regions {

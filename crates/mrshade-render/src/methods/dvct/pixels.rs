@@ -1,8 +1,9 @@
 //! The pixels' cones of `dvct` (gather.wgsl), once per trace texel (`dvct.trace_block`),
 //! their resolve per pixel (resolve.wgsl) into the [`IndirectLight`] that direct lighting
 //! adds, and the cones of the pixels that no trace texel around them is like, traced on their
-//! own (`dvct.retrace_likeness`); the probe's lights and their maps, whose visibility the
-//! cones blend in.
+//! own (`dvct.retrace_likeness`); a still view's thin rays for the virtual texels
+//! (`dvct.still_rays`); the probe's lights and their maps, whose visibility the cones blend
+//! in.
 
 use super::cascade::Cascade;
 use super::{GATHER_SHADER, RESOLVE_SHADER};
@@ -26,6 +27,8 @@ pub(super) struct PixelPasses {
     pub indirect: IndirectLight,
     /// The probe's lights and their maps around the inner volume (`dvct.probe_lights`).
     pub probe_maps: ProbeMaps,
+    /// A still view's thin rays for the virtual trace texels (`dvct.still_rays`).
+    pub still_rays: StillRays,
 }
 
 impl PixelPasses {
@@ -55,16 +58,35 @@ impl PixelPasses {
         let trace_size = (internal_size.0.div_ceil(scale), internal_size.1.div_ceil(scale));
         let traced = IndirectLight::new(device, "dvct/traced", trace_size);
         let glossy = IndirectLight::new(device, "dvct/traced_glossy", trace_size).light;
+        let still_rays = StillRays::new(device, trace_size, settings.still_rays);
         let mut entries = IndirectLight::storage_entries().to_vec();
         entries.extend([
             bind::storage_texture(5, indirect_light::FORMAT),
             bind::storage_texture(6, indirect_light::FORMAT),
         ]);
+        let traced_views_layout = entries.clone();
+        entries.extend([bind::storage_rw(8, cs), bind::uniform(9, cs)]);
         let traced_layout = bind::layout(device, "dvct/traced_layout", &entries);
         // The trace texels' seven targets, written by the trace and read by the resolve.
         let mut traced_views = traced.resources().to_vec();
         traced_views.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
-        let traced_group = bind::group(device, "dvct/traced_group", &traced_layout, &traced_views);
+        let traced_group = {
+            let mut entries: Vec<wgpu::BindGroupEntry> = traced_views
+                .iter()
+                .cloned()
+                .zip(&traced_views_layout)
+                .map(|(resource, entry)| wgpu::BindGroupEntry { binding: entry.binding, resource })
+                .collect();
+            entries.extend([
+                wgpu::BindGroupEntry { binding: 8, resource: still_rays.history.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 9, resource: still_rays.params.as_entire_binding() },
+            ]);
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("dvct/traced_group"),
+                layout: &traced_layout,
+                entries: &entries,
+            })
+        };
         let probe_layout = bind::layout(device, "dvct/probe_layout", &GpuProbe::layout_entries(cs));
         let probe_group = bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources());
         // The probe's lights and their maps around the inner volume (the cones' probe
@@ -164,6 +186,51 @@ impl PixelPasses {
             retrace,
             indirect,
             probe_maps,
+            still_rays,
+        }
+    }
+}
+
+/// A still view's thin rays (still_rays.wgsl): while nothing changes, each frame's virtual
+/// trace texels gather with `dvct.still_rays` rays shifted anew and keep the running mean of
+/// the still's frames; a moving view's frames trace their cones (`dvct.virtual_rays`).
+pub(super) struct StillRays {
+    /// Per trace texel, the running mean and what it is of (still_rays.wgsl `still_history`).
+    history: wgpu::Buffer,
+    /// (rays this frame, the frame's number in the still, 0, 0).
+    params: wgpu::Buffer,
+    rays: u32,
+    /// What `params` holds.
+    written: [u32; 4],
+}
+
+/// Bytes per trace texel of the history: five vec4s (still_rays.wgsl `STILL_HISTORY_VEC4S`).
+pub(super) const STILL_HISTORY_BYTES: u64 = 5 * 16;
+
+impl StillRays {
+    fn new(device: &wgpu::Device, trace_size: (u32, u32), rays: u32) -> Self {
+        let texels = if rays > 0 { trace_size.0 as u64 * trace_size.1 as u64 } else { 1 };
+        let history = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("dvct/still_history"),
+            size: texels * STILL_HISTORY_BYTES,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("dvct/still_rays"),
+            contents: bytemuck::cast_slice(&[0u32; 4]),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        Self { history, params, rays, written: [0; 4] }
+    }
+
+    /// Sets the frame's rays: `still_frames` frames since anything changed (0: this one did).
+    pub fn set_frame(&mut self, queue: &wgpu::Queue, still_frames: u32) {
+        let rays = if still_frames > 0 { self.rays } else { 0 };
+        let values = [rays, if rays > 0 { still_frames } else { 0 }, 0, 0];
+        if values != self.written {
+            queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&values));
+            self.written = values;
         }
     }
 }

@@ -83,6 +83,7 @@ pub const GATHER_SHADER: &str = wgsl!(
     "volume.wgsl",
     "texel.wgsl",
     "cones.wgsl",
+    "still_rays.wgsl",
     "pixel_light.wgsl",
     "gather.wgsl",
 );
