@@ -367,9 +367,11 @@ fn a_virtual_face_lit_only_by_the_floor_lights_the_virtual_face_before_it() {
         let e = pi * y0 * c.x + 2.0 * pi / 3.0 * y1 * c.z + pi / 4.0 * 0.630_783_1 * b2.z;
         (e / (h * h), x)
     };
-    let (with, x) = read("virtual_bounce = true\n", 2);
-    let (first_frame, _) = read("virtual_bounce = true\n", 1);
-    let (without, _) = read("", 2);
+    // The bounce in every frame (by default a frame in which the content moves leaves it out).
+    let with_bounce = "virtual_bounce = true\nvirtual_bounce_moving = true\n";
+    let (with, x) = read(with_bounce, 2);
+    let (first_frame, _) = read(with_bounce, 1);
+    let (without, _) = read("virtual_bounce = false\n", 2);
     // The lit floor under the volume, less the cubes' shadows.
     let sun_way = Vec3::new(-1.0, 1.0, 0.0) * 0.5;
     let floor: Vec<_> = rectangle(Vec3::new(-0.3, 0.0, -0.3), Vec3::X * 0.6, Vec3::Z * 0.6, Vec3::Y, SUN_FLOOR)

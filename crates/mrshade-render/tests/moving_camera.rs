@@ -151,30 +151,9 @@ fn a_moved_light_equals_one_placed_there() {
 fn a_moved_object_equals_one_placed_there() {
     for method in ["direct", "dlpv"] {
         for moving_real in [false, true] {
-            let at = |x: f32| {
-                let mut s = Setup::top_down(SIZE);
-                s.probe = Some([0.3, 0.3, 0.3]);
-                s.top_toml = format!("method = \"{method}\"\n");
-                s.extra_toml = "[shadows]\nresolution = 256\n[dlpv]\nresolution = 16\nrsm_resolution = 64\n".into();
-                s.plane(2.0, 0.0, 0.5, true);
-                s.cube([x, 0.08, 0.0], 0.08, moving_real).cube([0.0, 0.1, 0.3], 0.1, !moving_real);
-                s.light(
-                    json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.9}}),
-                    [0.1, 0.9, 0.1],
-                    true,
-                );
-                s.session()
-            };
-            let ((_a, from), (_b, to)) = (at(-0.3), at(0.2));
-            let instances: Vec<Mat4> = to.scene.instances.iter().map(|i| i.world_from_object).collect();
-            let mut moved = Rendered::new(from);
-            let camera = moved.renderer.session_camera();
-            render(&mut moved, camera, 1);
-            let mut profiler = mrshade_gpu::timing::profiler(&moved.ctx, false).unwrap();
-            let inputs = FrameInputs { instances: Some(&instances), ..FrameInputs::camera(camera) };
-            moved.renderer.render_untimed(&moved.ctx, &mut profiler, &inputs).unwrap();
-            let mut placed = Rendered::new(to);
-            render(&mut placed, camera, 2);
+            // The virtual surfaces' bounce reads the V_ρ of the gather before: `dlpv` without it
+            // here (the next test moves an object with it).
+            let (moved, placed) = object_moved(method, moving_real, "virtual_bounce = false\n", 0);
             let (a, b) = (srgb(&placed), srgb(&moved));
             let differing = a.iter().zip(&b).filter(|(p, q)| p != q).count();
             assert_eq!(
@@ -185,4 +164,60 @@ fn a_moved_object_equals_one_placed_there() {
             );
         }
     }
+}
+
+/// Two cubes on a floor under a probe and a spot (a `method` session with `dlpv` settings
+/// `dlpv`), the real or the virtual one moved from x = −0.3 to 0.2 after a frame and then
+/// `rest` frames more; and the same scene with it placed at 0.2, after three frames.
+fn object_moved(method: &str, moving_real: bool, dlpv: &str, rest: u32) -> (Rendered, Rendered) {
+    let at = |x: f32| {
+        let mut s = Setup::top_down(SIZE);
+        s.probe = Some([0.3, 0.3, 0.3]);
+        s.top_toml = format!("method = \"{method}\"\n");
+        s.extra_toml = format!("[shadows]\nresolution = 256\n[dlpv]\nresolution = 16\nrsm_resolution = 64\n{dlpv}");
+        s.plane(2.0, 0.0, 0.5, true);
+        s.cube([x, 0.08, 0.0], 0.08, moving_real).cube([0.0, 0.1, 0.3], 0.1, !moving_real);
+        s.light(
+            json!({"type": "spot", "intensity": 1.5, "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.9}}),
+            [0.1, 0.9, 0.1],
+            true,
+        );
+        s.session()
+    };
+    let ((_a, from), (_b, to)) = (at(-0.3), at(0.2));
+    let instances: Vec<Mat4> = to.scene.instances.iter().map(|i| i.world_from_object).collect();
+    let mut moved = Rendered::new(from);
+    let camera = moved.renderer.session_camera();
+    render(&mut moved, camera, 1);
+    let mut profiler = mrshade_gpu::timing::profiler(&moved.ctx, false).unwrap();
+    let inputs = FrameInputs { instances: Some(&instances), ..FrameInputs::camera(camera) };
+    moved.renderer.render_untimed(&moved.ctx, &mut profiler, &inputs).unwrap();
+    render(&mut moved, camera, rest);
+    let mut placed = Rendered::new(to);
+    render(&mut placed, camera, 2);
+    (moved, placed)
+}
+
+#[test]
+fn dlpv_gathers_the_virtual_surfaces_bounce_while_the_content_rests() {
+    // `dlpv.virtual_bounce` leaves the frames in which an object moves without the virtual
+    // surfaces' bounce (`virtual_bounce_moving` off): such a frame is, to the byte, the frame
+    // without the option; two frames after the object came to rest the bounce is back, within
+    // a level of one placed there from the start (the surfaces' light, which reads the gather
+    // before, converges).
+    let frame = |dlpv: &str, rest: u32| object_moved("dlpv", false, dlpv, rest);
+    let (moving, _) = frame("", 0);
+    let (without, _) = frame("virtual_bounce = false\n", 0);
+    assert!(srgb(&moving) == srgb(&without), "a frame of a moving object gathered the virtual surfaces' bounce");
+    let (rested, placed) = frame("", 2);
+    let (a, b, c) = (srgb(&rested), srgb(&placed), srgb(&without));
+    let differing = |x: &[u8], y: &[u8]| x.iter().zip(y).filter(|(p, q)| p != q).count();
+    let most = a.iter().zip(&b).map(|(p, q)| p.abs_diff(*q)).max().unwrap_or(0);
+    eprintln!(
+        "at rest: {} bytes differ from the frame without the bounce, {} from the object placed there (at most {most})",
+        differing(&a, &c),
+        differing(&a, &b)
+    );
+    assert!(differing(&a, &c) > 0, "the bounce did not come back at rest");
+    assert!(most <= 1, "at rest {most} levels from the object placed there");
 }

@@ -127,13 +127,19 @@ pub struct DlpvSettings {
     /// (paste 0.1146 / 0.1412 / 0.1371): below paste on all. The paths are tested against
     /// per-part visibility maps (1 024 directions per 2³ cells, visibility.wgsl), which costs a
     /// little of that: cornell 0.1310, desk-bunny 0.1100, desk-spot-real 0.1302,
-    /// desk-spot-virtual 0.1110, the variants 0.1130 / 0.1200 / 0.1114. Off by default: it
-    /// costs 0.17–0.32 ms more per moving 1080p frame on an H100 (cornell 1.26 → 1.46 ms,
-    /// desk-bunny 1.00 → 1.18, desk-spot-real 1.31 → 1.48, desk-spot-virtual 1.32 → 1.64;
-    /// a march per path instead of the maps cost 0.5 ms more again), past the method's 1.5 ms
-    /// on desk-spot-virtual: an option for stills and comparisons (docs/benchmarks.md,
-    /// 2026-12-07).
+    /// desk-spot-virtual 0.1110, the variants 0.1130 / 0.1200 / 0.1114. It costs 0.17–0.32 ms
+    /// more per 1080p frame in which the content moves on an H100 (cornell 1.26 → 1.46 ms,
+    /// desk-bunny 1.00 → 1.18, desk-spot-real 1.31 → 1.48, desk-spot-virtual 1.32 → 1.64; a
+    /// march per path instead of the maps cost 0.5 ms more again), past the method's 1.5 ms
+    /// on desk-spot-virtual: such frames leave it out unless `virtual_bounce_moving` (the
+    /// frames after the content and the lights came to rest gather it again, twice, as the
+    /// surfaces' light converges). Default true.
     pub virtual_bounce: bool,
+    /// With `dlpv.virtual_bounce`: whether the frames in which the virtual content or a light
+    /// moves gather the virtual surfaces' bounce too (0.17–0.32 ms more per such frame on an
+    /// H100, past the method's 1.5 ms on desk-spot-virtual), rather than only the frames of a
+    /// content at rest. Default false.
+    pub virtual_bounce_moving: bool,
     /// With `dlpv.virtual_bounce`: the paths' test in every cell, not only in V_ρ's; a VPL's
     /// light to a cell that crosses a virtual surface on the way also leaves V_Δ (the real
     /// bounce light the content blocks: the tall block's shadow of cornell's red wall on the
@@ -172,7 +178,8 @@ impl Default for DlpvSettings {
             photo_bounce: true,
             soft_probe_shadows: false,
             soft_virtual_probe_shadows: false,
-            virtual_bounce: false,
+            virtual_bounce: true,
+            virtual_bounce_moving: false,
             bounce_visibility: false,
         }
     }

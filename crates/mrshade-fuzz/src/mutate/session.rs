@@ -63,6 +63,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dlpv.soft_probe_shadows", Kind::Bool),
     ("dlpv.soft_virtual_probe_shadows", Kind::Bool),
     ("dlpv.virtual_bounce", Kind::Bool),
+    ("dlpv.virtual_bounce_moving", Kind::Bool),
     ("dlpv.bounce_visibility", Kind::Bool),
     ("ibl.virtual", Kind::Choice(&["prefiltered", "sh", "fis", "prt"])),
     ("ibl.samples", Kind::Number),

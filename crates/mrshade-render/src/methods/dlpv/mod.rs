@@ -25,7 +25,8 @@
 //! cells and a block's lit top never reached the wall behind it. Only the probe's broad lights'
 //! direct change is then injected (and not propagated, `dlpv.direct_steps`). The gathered
 //! VPLs see no surface on their way (the propagation's geometry volume is gone with it) but
-//! the virtual ones, with `dlpv.virtual_bounce` (an option: it costs 0.17–0.33 ms): the
+//! the virtual ones, with `dlpv.virtual_bounce` (while the content and the lights rest; in
+//! the frames they move in too with `dlpv.virtual_bounce_moving`, 0.17–0.33 ms more): the
 //! virtual surfaces mark their cells with their planes, each marked cell sends the light its
 //! surface takes from V_ρ on (one virtual surface lights another, and the real ones around),
 //! and in V_ρ's cells a path that crosses a marked plane carries nothing (vpl_aggregate.wgsl
@@ -102,6 +103,12 @@ pub struct DlpvMethod {
     stale_photo: bool,
     /// Gather once more next frame (with `dlpv.virtual_bounce`, after the maps were drawn).
     gather_again: bool,
+    /// Whether the volumes were made for `dlpv.virtual_bounce` and its frames choose it
+    /// (`dlpv.virtual_bounce_moving` off): on while the content and the lights rest.
+    bounce_at_rest: bool,
+    /// Gathers still to come with the virtual surfaces' bounce since it came on (two: their
+    /// VPLs read the last gather's V_ρ).
+    bounce_gathers: u8,
 }
 
 /// Builds the method (the registry's `build`).
@@ -443,6 +450,8 @@ impl DlpvMethod {
             stale: Moved::ALL,
             stale_photo: false,
             gather_again: false,
+            bounce_at_rest: params.virtual_bounce() && !settings.virtual_bounce_moving,
+            bounce_gathers: 0,
         }
     }
 
@@ -470,6 +479,17 @@ impl DlpvMethod {
             gather.follow(queue, geometry.virtual_box(), &self.params);
         }
     }
+
+    /// Turns the virtual surfaces' bounce on or off in every dispatch's uniform (volume.wgsl
+    /// `virtual_bounce`), the volumes made for it.
+    fn set_virtual_bounce(&mut self, queue: &wgpu::Queue, on: bool) {
+        self.params.gathered.w =
+            (self.params.gathered.w & !VIRTUAL_BOUNCE_BIT) | if on { VIRTUAL_BOUNCE_BIT } else { 0 };
+        let offset = std::mem::offset_of!(DlpvParams, gathered) as u64;
+        for buffer in &self.step_params {
+            queue.write_buffer(buffer, offset, bytemuck::bytes_of(&self.params.gathered));
+        }
+    }
 }
 
 impl LightTransport for DlpvMethod {
@@ -485,6 +505,15 @@ impl LightTransport for DlpvMethod {
             }
             self.stale = Moved::ALL;
         }
+        // The virtual surfaces' bounce while the content and the lights rest; a frame in which
+        // they move leaves it out (`dlpv.virtual_bounce_moving`), the next at rest gathers it.
+        if self.bounce_at_rest {
+            let moving = change.geometry_moved || change.vertices_deformed || change.moved_light_layers.is_some();
+            if moving == self.params.virtual_bounce() {
+                self.set_virtual_bounce(queue, !moving);
+                self.bounce_gathers = if moving { 0 } else { 2 };
+            }
+        }
         // The photo's light in the gathered volumes follows the camera and the photo, and the
         // cells the pixels read (the gathered bounce light) the camera.
         self.stale_photo |= (change.camera_moved || change.photo_changed)
@@ -496,9 +525,12 @@ impl LightTransport for DlpvMethod {
         // once after the maps were drawn anew, with the virtual surfaces' bounce: their
         // surfaces' VPLs (vpl_aggregate.wgsl `cell_vpls`) read the last gather's V_ρ, zero
         // before a still's first frame.
-        let again = std::mem::take(&mut self.stale_photo) || std::mem::take(&mut self.gather_again);
+        let again =
+            std::mem::take(&mut self.stale_photo) || std::mem::take(&mut self.gather_again) || self.bounce_gathers > 0;
+        let bounce = self.params.virtual_bounce();
         if let (false, true, Some(gather)) = (self.stale.any(), again, &self.vpl_gather) {
-            gather.record(rec);
+            gather.record(rec, bounce);
+            self.bounce_gathers = self.bounce_gathers.saturating_sub(1);
         }
         let moved = std::mem::take(&mut self.stale);
         if moved.any() {
@@ -508,8 +540,8 @@ impl LightTransport for DlpvMethod {
             self.probe.record_with(rec, rasterizer, &scene_maps);
             // The VPLs before V_ρ is cleared below (their virtual surfaces read it).
             if let Some(gather) = &self.vpl_gather {
-                gather.record_vpls(rec);
-                self.gather_again = self.params.virtual_bounce();
+                gather.record_vpls(rec, bounce);
+                self.gather_again = bounce;
             }
             rec.encoder.clear_buffer(&self.injected, 0, None);
             rec.encoder.clear_buffer(&self.first_sums, 0, None);
@@ -537,7 +569,7 @@ impl LightTransport for DlpvMethod {
                     rec.encoder.clear_buffer(&self.volumes, 0, Some(self.params.info.y as u64 * CELL_BYTES));
                     rec.encoder.clear_buffer(&self.rho_band2, 0, None);
                 }
-                gather.record_gather_pass(rec);
+                gather.record_gather_pass(rec, bounce);
             }
         }
         rec.compute(Self::LABEL, |pass| self.gather.record(pass));

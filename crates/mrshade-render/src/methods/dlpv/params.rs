@@ -6,6 +6,10 @@ use bytemuck::{Pod, Zeroable};
 use glam::{UVec4, Vec3, Vec4};
 use mrshade_core::settings::{DlpvSettings, DlpvSplat, DlpvTransport};
 
+/// The bit of `DlpvParams::gathered.w` that turns on the virtual surfaces' bounce (volume.wgsl
+/// `virtual_bounce`).
+pub const VIRTUAL_BOUNCE_BIT: u32 = 4;
+
 /// Mirrors `DlpvParams` in volume.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -37,7 +41,7 @@ impl DlpvParams {
     /// Whether the virtual surfaces pass on their light and stand in its way in V_ρ's cells
     /// (`dlpv.virtual_bounce`; volume.wgsl `virtual_bounce`).
     pub fn virtual_bounce(&self) -> bool {
-        self.gathered.w & 4 != 0
+        self.gathered.w & VIRTUAL_BOUNCE_BIT != 0
     }
 
     /// The volumes' uniform for `settings`: the cube of side `side` at `origin`, its fixed
@@ -76,7 +80,7 @@ impl DlpvParams {
                 settings.soft_probe_shadows as u32 | (settings.soft_virtual_probe_shadows as u32) << 1,
                 bounce_gathered as u32
                     | ((bounce_gathered && settings.bounce_visibility) as u32) << 1
-                    | ((bounce_gathered && settings.virtual_bounce) as u32) << 2,
+                    | if bounce_gathered && settings.virtual_bounce { VIRTUAL_BOUNCE_BIT } else { 0 },
             ),
         }
     }

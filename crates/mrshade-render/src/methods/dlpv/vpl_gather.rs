@@ -507,15 +507,17 @@ impl VplGather {
 
     /// Sums the maps into VPLs (`record_vpls`), then writes the gathered volumes
     /// (`record_gather_pass`).
-    pub fn record(&self, rec: &mut Recorder) {
-        self.record_vpls(rec);
-        self.record_gather_pass(rec);
+    /// `bounce`: this frame's `DlpvParams::virtual_bounce` (the virtual surfaces' VPLs and the
+    /// visibility maps are left out without it).
+    pub fn record(&self, rec: &mut Recorder, bounce: bool) {
+        self.record_vpls(rec, bounce);
+        self.record_gather_pass(rec, bounce);
     }
 
     /// Sums the maps into VPLs (with the bounce light: first flags the cells the pixels read;
     /// with the virtual surfaces' bounce, last their cells, which read the V_ρ the last
     /// gather left: before the volumes are cleared).
-    pub fn record_vpls(&self, rec: &mut Recorder) {
+    pub fn record_vpls(&self, rec: &mut Recorder, bounce: bool) {
         rec.encoder.clear_buffer(&self.count, 0, None);
         if self.mark_cells.is_some() {
             rec.encoder.clear_buffer(&self.blocks_read, 0, None);
@@ -535,7 +537,7 @@ impl VplGather {
                 pass.set_bind_group(0, &set.group, &[]);
                 pass.dispatch_workgroups(set.blocks[0], set.blocks[1], set.pairs.max(1));
             }
-            if let (Some(pipeline), Some(set)) = (&self.cell_vpls, self.sets.first()) {
+            if let (Some(pipeline), Some(set), true) = (&self.cell_vpls, self.sets.first(), bounce) {
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(0, &set.group, &[]);
                 pass.dispatch_workgroups(self.cells.div_ceil(64), 1, 1);
@@ -544,8 +546,8 @@ impl VplGather {
     }
 
     /// Writes the gathered volumes from the VPLs (after the propagation, which leaves them).
-    pub fn record_gather_pass(&self, rec: &mut Recorder) {
-        if let Some(visibility) = &self.visibility {
+    pub fn record_gather_pass(&self, rec: &mut Recorder, bounce: bool) {
+        if let (Some(visibility), true) = (&self.visibility, bounce) {
             rec.compute(Self::VISIBILITY_LABEL, |pass| visibility.record(pass));
         }
         rec.compute(Self::LABEL, |pass| self.record_gather(pass));
