@@ -109,11 +109,20 @@ pub fn group(
     layout: &wgpu::BindGroupLayout,
     resources: &[wgpu::BindingResource],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .enumerate()
-        .map(|(i, r)| wgpu::BindGroupEntry { binding: i as u32, resource: r.clone() })
-        .collect();
+    let at: Vec<(u32, wgpu::BindingResource)> =
+        resources.iter().enumerate().map(|(i, r)| (i as u32, r.clone())).collect();
+    group_at(device, label, layout, &at)
+}
+
+/// Creates a bind group of `(binding, resource)` entries: where a layout leaves bindings out.
+pub fn group_at(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[(u32, wgpu::BindingResource)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> =
+        resources.iter().map(|(binding, r)| wgpu::BindGroupEntry { binding: *binding, resource: r.clone() }).collect();
     device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(label), layout, entries: &entries })
 }
 

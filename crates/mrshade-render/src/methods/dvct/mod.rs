@@ -505,13 +505,14 @@ impl DvctMethod {
         }
     }
 
-    /// Records one pass per cascade (`passes` in the cascades' order).
     /// Whether nothing changed since the last frame: a still view's frames draw the probe's
-    /// lights anew and retrace the pixels no block is like.
+    /// lights anew, retrace the pixels no block is like and gather the virtual texels' thin
+    /// rays.
     fn view_still(&self) -> bool {
         self.still_frames > 0
     }
 
+    /// Records one pass per cascade (`passes` in the cascades' order).
     fn record_voxel_passes(&self, pass: &mut wgpu::ComputePass<'_>, passes: &[VoxelPass]) {
         for ((pipeline, bind_groups), cascade) in passes.iter().zip(&self.cascades) {
             let groups = cascade.resolution().div_ceil(4);

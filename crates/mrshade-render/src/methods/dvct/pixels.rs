@@ -63,30 +63,17 @@ impl PixelPasses {
         entries.extend([
             bind::storage_texture(5, indirect_light::FORMAT),
             bind::storage_texture(6, indirect_light::FORMAT),
+            bind::storage_rw(8, cs),
+            bind::uniform(9, cs),
         ]);
-        let traced_views_layout = entries.clone();
-        entries.extend([bind::storage_rw(8, cs), bind::uniform(9, cs)]);
         let traced_layout = bind::layout(device, "dvct/traced_layout", &entries);
         // The trace texels' seven targets, written by the trace and read by the resolve.
         let mut traced_views = traced.resources().to_vec();
         traced_views.extend([TextureView(&glossy.rv.view), TextureView(&glossy.r.view)]);
-        let traced_group = {
-            let mut entries: Vec<wgpu::BindGroupEntry> = traced_views
-                .iter()
-                .cloned()
-                .zip(&traced_views_layout)
-                .map(|(resource, entry)| wgpu::BindGroupEntry { binding: entry.binding, resource })
-                .collect();
-            entries.extend([
-                wgpu::BindGroupEntry { binding: 8, resource: still_rays.history.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 9, resource: still_rays.params.as_entire_binding() },
-            ]);
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("dvct/traced_group"),
-                layout: &traced_layout,
-                entries: &entries,
-            })
-        };
+        // Binding 7 is the retrace's list in the same module (cs_retrace).
+        let mut resources: Vec<_> = traced_views.iter().cloned().enumerate().map(|(i, r)| (i as u32, r)).collect();
+        resources.extend([(8, still_rays.history.as_entire_binding()), (9, still_rays.params.as_entire_binding())]);
+        let traced_group = bind::group_at(device, "dvct/traced_group", &traced_layout, &resources);
         let probe_layout = bind::layout(device, "dvct/probe_layout", &GpuProbe::layout_entries(cs));
         let probe_group = bind::group(device, "dvct/probe_group", &probe_layout, &scene.probe.resources());
         // The probe's lights and their maps around the inner volume (the cones' probe
@@ -154,18 +141,9 @@ impl PixelPasses {
         entries.push(bind::storage(7, cs));
         let retrace_layout = bind::layout(device, "dvct/retrace_layout", &entries);
         // Binding 7: 5 and 6 are the trace's glossy targets in the same module.
-        let mut entries: Vec<wgpu::BindGroupEntry> = indirect
-            .resources()
-            .into_iter()
-            .enumerate()
-            .map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource })
-            .collect();
-        entries.push(wgpu::BindGroupEntry { binding: 7, resource: retrace_list.list.as_entire_binding() });
-        let retrace_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("dvct/retrace_group"),
-            layout: &retrace_layout,
-            entries: &entries,
-        });
+        let mut resources: Vec<_> = indirect.resources().into_iter().enumerate().map(|(i, r)| (i as u32, r)).collect();
+        resources.push((7, retrace_list.list.as_entire_binding()));
+        let retrace_group = bind::group_at(device, "dvct/retrace_group", &retrace_layout, &resources);
         let retrace = Retrace {
             pipeline: cones_pipeline("dvct/retrace", "cs_retrace", &retrace_layout),
             groups: vec![gbuffer_group, trace_groups[1].clone(), retrace_group, trace_groups[3].clone()],
