@@ -45,6 +45,7 @@ const KEYS: &[(&str, Kind)] = &[
     ("dvct.sample_spacing", Kind::Number),
     ("dvct.bounce_spacing", Kind::Number),
     ("dvct.bounces", Kind::Number),
+    ("dvct.third_bounce_moving", Kind::Bool),
     ("dvct.trace_block", Kind::Number),
     ("dvct.photo_voxels", Kind::Bool),
     ("dvct.virtual_rays", Kind::Number),

@@ -25,10 +25,12 @@ pub struct Cascade {
     /// Per voxel: the real and the virtual triangle kept (volume.wgsl's words; 0: empty).
     pub voxels: wgpu::Buffer,
     pub voxel_words: u32,
-    /// The first bounce's volumes and, with `dvct.bounces` = 2, the second's.
+    /// The first bounce's volumes and, with `dvct.bounces` ≥ 2, the second's. A third bounce
+    /// goes into the first's volumes again (it gathers the second's: mod.rs `third`).
     pub first: VolumePair,
     pub second: Option<VolumePair>,
-    /// With two bounces and `dvct.photo_voxels`: the second bounce's light before the photo's.
+    /// With two bounces and `dvct.photo_voxels`, or three: the last bounce's light before the
+    /// photo's (a third bounce's pass reads the first bounce's volumes and cannot write them).
     pub raw: Option<RawPair>,
     /// Per voxel, the side of its surface that sends out its light in each solution (rv, r):
     /// the light pass writes them, the mipmaps read them (mips.wgsl).
@@ -72,8 +74,8 @@ impl Cascade {
         });
         let first = VolumePair::new(device, &format!("{label}/first_bounce"), res);
         let second = (settings.bounces >= 2).then(|| VolumePair::new(device, &format!("{label}/second_bounce"), res));
-        let raw = (second.is_some() && settings.photo_voxels)
-            .then(|| RawPair::new(device, &format!("{label}/second_bounce_raw"), res));
+        let raw = (second.is_some() && settings.photo_voxels || settings.bounces >= 3)
+            .then(|| RawPair::new(device, &format!("{label}/last_bounce_raw"), res));
         let normals = VoxelNormals::new(device, &format!("{label}/normals"), res);
         Self { params, params_buffer, extent, voxels, voxel_words, first, second, raw, normals }
     }
@@ -83,7 +85,8 @@ impl Cascade {
         self.params.info.x
     }
 
-    /// The volumes the pixels' cones read (the second bounce's, else the first's).
+    /// The volumes the pixels' cones read after two bounces (the second bounce's, else the
+    /// first's; a third bounce goes into the first's).
     pub fn lit(&self) -> &VolumePair {
         self.second.as_ref().unwrap_or(&self.first)
     }

@@ -1,7 +1,7 @@
 //! Delta voxel cone tracing, the `dvct` method (Franke §2.13, [Fra14a]), its passes in the
 //! order of the spec's pseudo-code (§2.13.8): voxelise the real and virtual scene around the
 //! virtual content → inject the first bounce of both solutions per voxel → (a second bounce,
-//! gathered by cones per voxel) → the photo's light in the real voxels the camera sees →
+//! gathered by cones per voxel, and while the content rests a third) → the photo's light in the real voxels the camera sees →
 //! 3D mipmaps → per-pixel cone tracing into the [`IndirectLight`] that direct lighting adds.
 //! Voxels and their light are redrawn only when geometry or a light moved, the photo's light
 //! when the photo or the camera did; the cones are traced every frame.
@@ -11,7 +11,9 @@
 //! twice; spec §2.13.3's pitfall) instead of one shadow cone per light; the split injection is
 //! per voxel (each voxel lit through the shadow maps for both solutions) instead of per RSM
 //! texel with racing writes; a voxel that holds both faces of a thin real wall keeps the one
-//! facing the content (voxelize.wgsl); a second bounce is injected (`dvct.bounces`); real
+//! facing the content (voxelize.wgsl); a second bounce is injected, and while the content and
+//! the lights rest a third, which takes the virtual content's light off the real surfaces back
+//! onto it (`dvct.bounces`); real
 //! voxels the camera sees take the photo's light (spec §2.11's B ≈ (T_μ² + T_μ)·L_e applied to
 //! the voxels, `dvct.photo_voxels`, photo.wgsl); the mipmaps are anisotropic, a chain per way
 //! along each axis ([CNS+11]), and a voxel shows its light only on its own side (mips.wgsl);
@@ -84,11 +86,22 @@ pub struct DvctMethod {
     voxelize_groups: Vec<wgpu::BindGroup>,
     /// The first bounce, per cascade.
     light: Vec<VoxelPass>,
-    /// The second bounce, per cascade (`dvct.bounces` = 2).
+    /// The second bounce, per cascade (`dvct.bounces` ≥ 2).
     bounce: Vec<VoxelPass>,
     /// The photo's light in the second bounce's real voxels, per cascade (`dvct.photo_voxels`
     /// with two bounces; with one the light pass takes it).
     photo: Vec<VoxelPass>,
+    /// The third bounce and its photo pass, per cascade (`dvct.bounces` = 3): into the first
+    /// bounce's volumes.
+    third: Vec<VoxelPass>,
+    third_photo: Vec<VoxelPass>,
+    /// `dvct.third_bounce_moving`.
+    third_moving: bool,
+    /// Whether the volumes hold the third bounce of the content and lights as they are.
+    third_done: bool,
+    /// What the pixels' cones read (cones.wgsl's group 1): the second bounce's volumes, and
+    /// the first's, which a third bounce writes.
+    cone_volumes: [wgpu::BindGroup; 2],
     /// The mipmaps' first level (from the voxels) and the levels after it (mips.wgsl).
     mips_base: wgpu::ComputePipeline,
     mips: wgpu::ComputePipeline,
@@ -150,9 +163,12 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
         sides.push(d.outer_voxels() as u64);
     }
     let voxels: u64 = sides.iter().map(|&r| r.pow(3) * VOXEL_BYTES + VoxelNormals::bytes(r as u32)).sum();
-    let light: u64 = sides.iter().map(|&r| d.bounces as u64 * VolumePair::bytes(r as u32)).sum();
-    let raw: u64 =
-        if d.bounces >= 2 && d.photo_voxels { sides.iter().map(|&r| RawPair::bytes(r as u32)).sum() } else { 0 };
+    let light: u64 = sides.iter().map(|&r| d.bounces.min(2) as u64 * VolumePair::bytes(r as u32)).sum();
+    let raw: u64 = if d.bounces >= 2 && d.photo_voxels || d.bounces >= 3 {
+        sides.iter().map(|&r| RawPair::bytes(r as u32)).sum()
+    } else {
+        0
+    };
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
         (
@@ -165,7 +181,7 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
         ),
         ("dvct voxels and their normals (dvct.resolution³, dvct.outer_resolution³)", voxels),
         ("dvct light volumes (voxels × bounces per volume, with mips)", light),
-        ("dvct second bounce before the photo's light (dvct.photo_voxels)", raw),
+        ("dvct last bounce before the photo's light (dvct.photo_voxels, dvct.bounces = 3)", raw),
         (
             "dvct probe-light maps (2 × dvct.probe_lights × dvct.probe_map_resolution²)",
             super::rsm::bytes(2 * settings.dvct.probe_lights as u64, settings.dvct.probe_map_resolution),
@@ -182,6 +198,8 @@ impl DvctMethod {
     pub const BOUNCE_LABEL: &'static str = "dvct-bounce";
     /// GPU timing label of the photo's light in the second bounce's voxels and their mipmaps.
     pub const PHOTO_LABEL: &'static str = "dvct-photo";
+    /// GPU timing label of the third bounce, its photo's light and the mipmaps.
+    pub const THIRD_LABEL: &'static str = "dvct-third-bounce";
     /// GPU timing label of the pixels' cones.
     pub const LABEL: &'static str = "dvct-cones";
 
@@ -337,13 +355,20 @@ impl DvctMethod {
         entries.push(bind::uniform(9, cs));
         entries.extend((10..18).map(volume_3d));
         let volume_layout = bind::layout(device, "dvct/volume_layout", &entries);
+        // The bases (the voxels themselves) of `based`, the chains of `pair`: a third bounce
+        // adds to the first bounce's voxels what it gathers through the second's chains.
+        let mixed_group =
+            |based: &VolumePair, pair: &VolumePair, outer: &VolumePair, outer_params: &wgpu::Buffer, label: &str| {
+                let bases = &based.sampled[..2];
+                let chains = &pair.sampled[2..];
+                let mut resources = vec![TextureView(&bases[0]), TextureView(&bases[1]), Sampler(&sampler)];
+                resources.extend(chains.iter().map(TextureView));
+                resources.push(outer_params.as_entire_binding());
+                resources.extend(outer.sampled.iter().map(TextureView));
+                bind::group(device, label, &volume_layout, &resources)
+            };
         let volume_group = |pair: &VolumePair, outer: &VolumePair, outer_params: &wgpu::Buffer, label: &str| {
-            let (bases, chains) = pair.sampled.split_at(2);
-            let mut resources = vec![TextureView(&bases[0]), TextureView(&bases[1]), Sampler(&sampler)];
-            resources.extend(chains.iter().map(TextureView));
-            resources.push(outer_params.as_entire_binding());
-            resources.extend(outer.sampled.iter().map(TextureView));
-            bind::group(device, label, &volume_layout, &resources)
+            mixed_group(pair, pair, outer, outer_params, label)
         };
 
         // Second bounce: each cascade's voxels gather its first bounce and the outer one's.
@@ -380,6 +405,31 @@ impl DvctMethod {
             }
         }
 
+        // Third bounce (`dvct.bounces` = 3): each cascade's voxels gather the second bounce
+        // (after its photo's light) and add it to their first, into the raw volumes; its photo
+        // pass then writes the first bounce's volumes, which the pixels' cones read.
+        let mut third = Vec::new();
+        if settings.bounces >= 3 {
+            let (pipeline, _) = &bounce[0];
+            for c in &cascades {
+                let (Some(second), Some(raw)) = (&c.second, &c.raw) else { continue };
+                let [rv, r] = &raw.views;
+                let groups = vec![
+                    surface_group(c),
+                    mixed_group(
+                        &c.first,
+                        second,
+                        outermost.second.as_ref().expect("three bounces"),
+                        &outermost.params_buffer,
+                        "dvct/third_bounce_group",
+                    ),
+                    probe_textures_group.clone(),
+                    bind::group(device, "dvct/third_bounce_raw_group", &out_layout, &[TextureView(rv), TextureView(r)]),
+                ];
+                third.push((pipeline.clone(), groups));
+            }
+        }
+
         // The photo's light in the second bounce's real voxels (photo_pass.wgsl).
         // A 3D texture read texel by texel (the raw volumes, the mipmaps' finer level).
         let unfiltered_3d = |i| {
@@ -387,6 +437,7 @@ impl DvctMethod {
             bind::texture(i, cs, unfiltered, wgpu::TextureViewDimension::D3)
         };
         let mut photo_passes = Vec::new();
+        let mut third_photo = Vec::new();
         if cascades.iter().any(|c| c.raw.is_some()) {
             let raw_layout = bind::layout(device, "dvct/raw_layout", &[unfiltered_3d(0), unfiltered_3d(1)]);
             let pipeline = compute_pipeline(
@@ -404,6 +455,11 @@ impl DvctMethod {
                     probe_textures_group.clone(),
                     out_group(second, "dvct/photo_out_group"),
                 ];
+                if !third.is_empty() {
+                    let mut groups = groups.clone();
+                    groups[3] = out_group(&c.first, "dvct/third_photo_out_group");
+                    third_photo.push((pipeline.clone(), groups));
+                }
                 photo_passes.push((pipeline.clone(), groups));
             }
         }
@@ -437,6 +493,10 @@ impl DvctMethod {
         // pixels that no texel around them is like.
         let inner = &cascades[0];
         let volumes = volume_group(inner.lit(), outermost.lit(), &outermost.params_buffer, "dvct/volume_group");
+        // After a third bounce they read the first bounce's volumes, into which it went.
+        let third_volumes = (!third.is_empty())
+            .then(|| volume_group(&inner.first, &outermost.first, &outermost.params_buffer, "dvct/third_volume_group"));
+        let cone_volumes = [volumes.clone(), third_volumes.unwrap_or_else(|| volumes.clone())];
         let pixels::PixelPasses { trace, resolve, retrace, indirect, probe_maps, still_rays } =
             pixels::PixelPasses::new(inputs, inner, &volume_layout, volumes);
         Self {
@@ -448,6 +508,11 @@ impl DvctMethod {
             light,
             bounce,
             photo: photo_passes,
+            third,
+            third_photo,
+            third_moving: settings.third_bounce_moving,
+            third_done: false,
+            cone_volumes,
             mips_base,
             mips,
             first_mips,
@@ -485,9 +550,10 @@ impl DvctMethod {
     }
 
     /// The light volumes the pixels' cones read in the volume around the virtual content (the
-    /// second bounce's, else the first's).
+    /// second bounce's, else the first's; the first's once a third bounce went into them).
     pub fn volumes(&self) -> &VolumePair {
-        self.cascades[0].lit()
+        let inner = &self.cascades[0];
+        if self.third_done { &inner.first } else { inner.lit() }
     }
 
     /// The normals of the voxels of the volume around the virtual content.
@@ -590,12 +656,34 @@ impl LightTransport for DvctMethod {
                 }
             });
         }
-        if (stale_light || stale_photo) && !self.photo.is_empty() {
+        // The third bounce (`dvct.bounces` = 3) in the first frame in which the content and the
+        // lights rest, or in this one with `dvct.third_bounce_moving`; once gathered, a new
+        // photo or camera alone puts the photo's light in its voxels again (the second
+        // bounce's keep the photo of the frame the light last changed in, as the first's do).
+        if stale_light {
+            self.third_done = false;
+        }
+        let gather_third = !self.third.is_empty() && !self.third_done && (!stale_light || self.third_moving);
+        let photo_again = stale_photo && !self.third_done;
+        if (stale_light || photo_again) && !self.photo.is_empty() {
             rec.compute(Self::PHOTO_LABEL, |pass| {
                 self.record_voxel_passes(pass, &self.photo);
                 self.record_mips(pass, &self.second_mips);
             });
         }
+        if gather_third || (stale_photo && self.third_done) {
+            rec.compute(Self::THIRD_LABEL, |pass| {
+                if gather_third {
+                    self.record_voxel_passes(pass, &self.third);
+                }
+                self.record_voxel_passes(pass, &self.third_photo);
+                self.record_mips(pass, &self.first_mips);
+            });
+            self.third_done = true;
+        }
+        let volumes = &self.cone_volumes[self.third_done as usize];
+        self.trace.groups[1] = volumes.clone();
+        self.retrace.set_volumes(volumes);
         self.retrace.begin(&mut rec.encoder, self.view_still());
         rec.compute(Self::LABEL, |pass| {
             self.trace.record(pass);

@@ -229,6 +229,11 @@ pub(super) struct Retrace {
 }
 
 impl Retrace {
+    /// The volumes its cones read (cones.wgsl's group 1), as the trace's.
+    pub fn set_volumes(&mut self, volumes: &wgpu::BindGroup) {
+        self.groups[1] = volumes.clone();
+    }
+
     /// Readies the frame (before the pass of [`Self::record`]): a still view's frame empties
     /// the list and has the resolve fill it; a moving view's has it list nothing.
     pub fn begin(&mut self, encoder: &mut wgpu::CommandEncoder, still: bool) {
