@@ -356,7 +356,9 @@ impl DvctMethod {
         entries.extend((10..18).map(volume_3d));
         let volume_layout = bind::layout(device, "dvct/volume_layout", &entries);
         // The bases (the voxels themselves) of `based`, the chains of `pair`: a third bounce
-        // adds to the first bounce's voxels what it gathers through the second's chains.
+        // adds to the first bounce's voxels what it gathers through the second's chains (its
+        // samples finer than the chains' first level, within a voxel or two of the voxel,
+        // read the first bounce's voxels).
         let mixed_group =
             |based: &VolumePair, pair: &VolumePair, outer: &VolumePair, outer_params: &wgpu::Buffer, label: &str| {
                 let bases = &based.sampled[..2];
@@ -369,6 +371,12 @@ impl DvctMethod {
             };
         let volume_group = |pair: &VolumePair, outer: &VolumePair, outer_params: &wgpu::Buffer, label: &str| {
             mixed_group(pair, pair, outer, outer_params, label)
+        };
+
+        // The raw volumes as a bounce's output (before the photo pass).
+        let raw_out_group = |raw: &RawPair, label: &str| {
+            let [rv, r] = &raw.views;
+            bind::group(device, label, &out_layout, &[TextureView(rv), TextureView(r)])
         };
 
         // Second bounce: each cascade's voxels gather its first bounce and the outer one's.
@@ -384,15 +392,7 @@ impl DvctMethod {
                 let second = c.second.as_ref().expect("two bounces");
                 // Into the volumes the cones read, or before the photo's light (photo pass).
                 let out = match &c.raw {
-                    Some(raw) => {
-                        let [rv, r] = &raw.views;
-                        bind::group(
-                            device,
-                            "dvct/second_bounce_raw_group",
-                            &out_layout,
-                            &[TextureView(rv), TextureView(r)],
-                        )
-                    }
+                    Some(raw) => raw_out_group(raw, "dvct/second_bounce_raw_group"),
                     None => out_group(second, "dvct/second_bounce_out_group"),
                 };
                 let groups = vec![
@@ -413,7 +413,6 @@ impl DvctMethod {
             let (pipeline, _) = &bounce[0];
             for c in &cascades {
                 let (Some(second), Some(raw)) = (&c.second, &c.raw) else { continue };
-                let [rv, r] = &raw.views;
                 let groups = vec![
                     surface_group(c),
                     mixed_group(
@@ -424,7 +423,7 @@ impl DvctMethod {
                         "dvct/third_bounce_group",
                     ),
                     probe_textures_group.clone(),
-                    bind::group(device, "dvct/third_bounce_raw_group", &out_layout, &[TextureView(rv), TextureView(r)]),
+                    raw_out_group(raw, "dvct/third_bounce_raw_group"),
                 ];
                 third.push((pipeline.clone(), groups));
             }
