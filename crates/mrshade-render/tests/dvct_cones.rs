@@ -566,16 +566,13 @@ fn a_third_bounce_at_rest_brings_the_light_between_a_virtual_block_and_a_real_ce
         dvct(&mut s, 128);
         s.top_toml = format!("method = \"{method}\"\n");
         s.extra_toml = s.extra_toml.replace("frames = 8", &format!("frames = {frames}"));
-        s.extra_toml += &format!(
-            "photo_voxels = false\ntrace_block = 1\nbounces = {bounces}\nthird_bounce_moving = {moving}\n\
-             [reference]\nspp = 256\nmax_bounces = {}\n",
-            if method == "direct" { 1 } else { 11 }
-        );
+        s.extra_toml +=
+            &format!("photo_voxels = false\ntrace_block = 1\nbounces = {bounces}\nthird_bounce_moving = {moving}\n");
         s
     };
-    let (all, first) = path_traced_and_first_bounce(|bounces| {
+    let (all, first) = path_traced_and_first_bounce(|max_bounces| {
         let mut s = scene("direct", 3, 1, false);
-        s.extra_toml = s.extra_toml.replace("max_bounces = 1\n", &format!("max_bounces = {bounces}\n"));
+        s.extra_toml += &format!("[reference]\nspp = 256\nmax_bounces = {max_bounces}\n");
         s
     });
     let direct = scene("direct", 3, 1, false).render();

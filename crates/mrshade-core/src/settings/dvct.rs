@@ -157,6 +157,13 @@ impl DvctSettings {
         self.outer_resolution.min(self.resolution)
     }
 
+    /// Whether the last bounce is written apart before the photo's light goes in (with two
+    /// bounces and `photo_voxels`), or because a third bounce reads the first's volumes that
+    /// it then goes into.
+    pub fn raw_volumes(&self) -> bool {
+        self.bounces >= 2 && self.photo_voxels || self.bounces >= 3
+    }
+
     /// Checks every value; the error names the offending field.
     pub fn validate(&self) -> Result<(), String> {
         check_power_of_two(self.resolution, 16, 512, "dvct.resolution", " voxels")?;

@@ -74,8 +74,7 @@ impl Cascade {
         });
         let first = VolumePair::new(device, &format!("{label}/first_bounce"), res);
         let second = (settings.bounces >= 2).then(|| VolumePair::new(device, &format!("{label}/second_bounce"), res));
-        let raw = (second.is_some() && settings.photo_voxels || settings.bounces >= 3)
-            .then(|| RawPair::new(device, &format!("{label}/last_bounce_raw"), res));
+        let raw = settings.raw_volumes().then(|| RawPair::new(device, &format!("{label}/last_bounce_raw"), res));
         let normals = VoxelNormals::new(device, &format!("{label}/normals"), res);
         Self { params, params_buffer, extent, voxels, voxel_words, first, second, raw, normals }
     }

@@ -1,8 +1,9 @@
 //! Delta voxel cone tracing, the `dvct` method (Franke §2.13, [Fra14a]), its passes in the
 //! order of the spec's pseudo-code (§2.13.8): voxelise the real and virtual scene around the
 //! virtual content → inject the first bounce of both solutions per voxel → (a second bounce,
-//! gathered by cones per voxel, and while the content rests a third) → the photo's light in the real voxels the camera sees →
-//! 3D mipmaps → per-pixel cone tracing into the [`IndirectLight`] that direct lighting adds.
+//! gathered by cones per voxel, and while the content rests a third) → the photo's light in
+//! the real voxels the camera sees → 3D mipmaps → per-pixel cone tracing into the
+//! [`IndirectLight`] that direct lighting adds.
 //! Voxels and their light are redrawn only when geometry or a light moved, the photo's light
 //! when the photo or the camera did; the cones are traced every frame.
 //!
@@ -164,11 +165,7 @@ pub(crate) fn estimate(settings: &RenderSettings, internal_pixels: u64, _layers:
     }
     let voxels: u64 = sides.iter().map(|&r| r.pow(3) * VOXEL_BYTES + VoxelNormals::bytes(r as u32)).sum();
     let light: u64 = sides.iter().map(|&r| d.bounces.min(2) as u64 * VolumePair::bytes(r as u32)).sum();
-    let raw: u64 = if d.bounces >= 2 && d.photo_voxels || d.bounces >= 3 {
-        sides.iter().map(|&r| RawPair::bytes(r as u32)).sum()
-    } else {
-        0
-    };
+    let raw: u64 = if d.raw_volumes() { sides.iter().map(|&r| RawPair::bytes(r as u32)).sum() } else { 0 };
     vec![
         ("dvct screen targets (output size × supersample²)", internal_pixels * 5 * 8),
         (
